@@ -1,0 +1,99 @@
+"""FastAPI application factory: REST under /api/v1, the WebSocket, OpenAPI docs at /docs, the studio at /."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from fastapi import APIRouter, FastAPI
+from fastapi.middleware.cors import CORSMiddleware
+from fastapi.openapi.utils import get_openapi
+from fastapi.responses import FileResponse, JSONResponse
+from fastapi.staticfiles import StaticFiles
+
+from .. import __version__
+from . import errors
+from .models import WsHeartbeat, WsSubscribe
+from .routers import axes, controller, events, fb, health, live, project
+from .state import Studio
+
+API_PREFIX = "/api/v1"
+
+
+def default_static_dir() -> Path | None:
+    """The built studio: `frontend/dist` of a source checkout, or `mcstudio/web` of an installed package."""
+    here = Path(__file__).resolve()
+    for candidate in (here.parents[3] / "frontend" / "dist", here.parents[1] / "web"):
+        if (candidate / "index.html").is_file():
+            return candidate
+    return None
+
+
+def create_app(studio: Studio, *, static_dir: Path | None = None, cors_origins: list[str] | None = None) -> FastAPI:
+    app = FastAPI(
+        title="MC Studio",
+        version=__version__,
+        description="REST API of MC Studio: an emulated NJ/NX-style machine controller (MC function module, "
+        "EtherCAT, CiA402 drives) you commission from the browser or from scripts. Names of instructions and "
+        "variables are those of the vendor manual.",
+        openapi_url=f"{API_PREFIX}/openapi.json",
+        docs_url="/docs",
+        redoc_url=None,
+    )
+    app.state.studio = studio
+    errors.install(app)
+    if cors_origins:
+        app.add_middleware(CORSMiddleware, allow_origins=cors_origins, allow_methods=["*"], allow_headers=["*"])
+
+    api = APIRouter(prefix=API_PREFIX)
+    for r in (health.router, controller.router, project.router, axes.router, fb.router, events.router, live.router):
+        api.include_router(r)
+    app.include_router(api)
+
+    @app.get("/openapi.json", include_in_schema=False)
+    def openapi_alias() -> JSONResponse:
+        return JSONResponse(app.openapi())
+
+    def custom_openapi() -> dict[str, Any]:
+        if app.openapi_schema:
+            return app.openapi_schema
+        schema = get_openapi(title=app.title, version=app.version, description=app.description, routes=app.routes)
+        comps = schema.setdefault("components", {}).setdefault("schemas", {})
+        # WebSocket client messages are not routes; publish their schemas for the generated client types.
+        for model in (WsSubscribe, WsHeartbeat):
+            comps[model.__name__] = model.model_json_schema(ref_template="#/components/schemas/{model}")
+        app.openapi_schema = schema
+        return schema
+
+    app.openapi = custom_openapi  # type: ignore[method-assign]
+
+    static = static_dir if static_dir is not None else default_static_dir()
+    if static is not None and (static / "index.html").is_file():
+        assets = static / "assets"
+        if assets.is_dir():
+            app.mount("/assets", StaticFiles(directory=assets), name="assets")
+        index = static / "index.html"
+
+        @app.get("/", include_in_schema=False)
+        def index_page() -> FileResponse:
+            return FileResponse(index, headers={"Cache-Control": "no-cache"})
+
+        @app.get("/{path:path}", include_in_schema=False)
+        def spa(path: str) -> FileResponse | JSONResponse:
+            if path.startswith(("api/", "docs")):
+                return JSONResponse({"detail": "Not Found"}, status_code=404)
+            target = (static / path).resolve()
+            if target.is_file() and static.resolve() in target.parents:
+                return FileResponse(target)
+            return FileResponse(index, headers={"Cache-Control": "no-cache"})
+    else:
+
+        @app.get("/", include_in_schema=False)
+        def no_frontend() -> JSONResponse:
+            return JSONResponse(
+                {"detail": "the studio frontend is not built; run 'make run' (or 'npm run build' in frontend/)",
+                 "api": f"{API_PREFIX}/health", "docs": "/docs"},
+                status_code=503,
+            )
+
+    return app

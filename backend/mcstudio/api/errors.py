@@ -1,0 +1,60 @@
+"""Uniform 4xx responses: `{"detail": [...]}` with a `loc` naming the offending field, like FastAPI's own 422s."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from fastapi import FastAPI, Request
+from fastapi.responses import JSONResponse
+
+from ..controller.kernel import KernelError
+from ..controller.mc.fb.base import FBInputError
+from ..project.io import ProjectError
+from .state import ConflictError
+
+
+def _err(loc: list[Any], msg: str, typ: str = "value_error", **extra: Any) -> dict[str, Any]:
+    return {"loc": loc, "msg": msg, "type": typ, **extra}
+
+
+def install(app: FastAPI) -> None:
+    @app.exception_handler(FBInputError)
+    async def _fb_input(_: Request, exc: FBInputError) -> JSONResponse:
+        loc = ["body", "inputs", exc.field]
+        return JSONResponse(status_code=422, content={"detail": [_err(loc, exc.message)]})
+
+    @app.exception_handler(KernelError)
+    async def _kernel(_: Request, exc: KernelError) -> JSONResponse:
+        if exc.status == 404:
+            return JSONResponse(status_code=404, content={"detail": exc.message})
+        loc = ["body", *exc.field.split(".")]
+        return JSONResponse(status_code=exc.status, content={"detail": [_err(loc, exc.message)]})
+
+    @app.exception_handler(ProjectError)
+    async def _project(_: Request, exc: ProjectError) -> JSONResponse:
+        if not exc.issues:
+            return JSONResponse(status_code=422, content={"detail": [_err(["body"], exc.message)]})
+        detail = [
+            _err(["body", *_split_path(i.path)], i.message, "project_error", path=i.path, code=i.code)
+            for i in exc.issues
+        ]
+        return JSONResponse(status_code=422, content={"detail": detail, "message": exc.message})
+
+    @app.exception_handler(ConflictError)
+    async def _conflict(_: Request, exc: ConflictError) -> JSONResponse:
+        return JSONResponse(status_code=409, content={"detail": str(exc)})
+
+
+def _split_path(path: str) -> list[Any]:
+    """'axes[1].parameters.Operation.MaxVel' → ['axes', 1, 'parameters', 'Operation', 'MaxVel']."""
+    out: list[Any] = []
+    for part in path.split("."):
+        while "[" in part:
+            head, rest = part.split("[", 1)
+            if head:
+                out.append(head)
+            idx, part = rest.split("]", 1)
+            out.append(int(idx) if idx.isdigit() else idx)
+        if part:
+            out.append(part)
+    return out

@@ -1,0 +1,122 @@
+"""Live data: the snapshot over REST and the WebSocket that pushes it at a client-chosen rate.
+
+WebSocket protocol (`/api/v1/ws`, JSON text frames):
+  client → server  {"type": "subscribe", "rate_hz": 30, "axes": null, "fbs": null, "events": true}
+                   {"type": "heartbeat", "fbs": [3]}        renews the dead-man leases of instances 3 …
+  server → client  {"type": "snapshot", "controller": {...}, "axes": [...], "fbs": {...}, "events": [...]}
+                   {"type": "error", "detail": "..."}         for a malformed client message
+A snapshot is sent when the controller advanced, and at least once a second. When the socket closes, every instance
+whose lease this socket renewed drops its Execute/Enable inputs at once (a lost browser stops its jog).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import json
+from typing import Any
+
+from fastapi import APIRouter, Depends, WebSocket, WebSocketDisconnect
+from pydantic import ValidationError
+
+from ...controller.kernel import Controller, Snapshot
+from ..deps import get_studio
+from ..models import WsHeartbeat, WsSnapshot, WsSubscribe
+from ..state import Studio
+
+router = APIRouter(tags=["live"])
+
+
+def build_snapshot(studio: Studio, snap: Snapshot, sub: WsSubscribe, since_event: int) -> dict[str, Any]:
+    fbs = {}
+    for fid in snap.fbs:
+        if sub.fbs is None or fid in sub.fbs:
+            out = studio.fb_out(snap, fid)
+            if out is not None:
+                fbs[str(fid)] = out.model_dump()
+    events = (
+        [e.as_dict() for e in studio.controller.events.list(since_seq=since_event, limit=200)] if sub.events else []
+    )
+    return {
+        "type": "snapshot",
+        "controller": studio.status(snap).model_dump(),
+        "axes": [{"name": n, "variables": v} for n, v in studio.axis_views(snap, sub.axes)],
+        "fbs": fbs,
+        "events": events,
+    }
+
+
+@router.get("/snapshot", response_model=WsSnapshot, summary="The latest snapshot (the WebSocket's payload)")
+def get_snapshot(studio: Studio = Depends(get_studio)) -> dict[str, Any]:
+    sub = WsSubscribe(type="subscribe")
+    return build_snapshot(studio, studio.runner.snapshot, sub, studio.controller.events.last_seq)
+
+
+@router.websocket("/ws")
+async def websocket(ws: WebSocket) -> None:
+    studio: Studio = ws.app.state.studio
+    await ws.accept()
+    state: dict[str, Any] = {"sub": WsSubscribe(type="subscribe")}
+    leased: set[int] = set()
+
+    async def reader() -> None:
+        while True:
+            try:
+                msg = await ws.receive_json()
+            except (json.JSONDecodeError, ValueError):
+                await ws.send_json({"type": "error", "detail": "messages must be JSON objects"})
+                continue
+            kind = msg.get("type") if isinstance(msg, dict) else None
+            try:
+                if kind == "subscribe":
+                    state["sub"] = WsSubscribe.model_validate(msg)
+                elif kind == "heartbeat":
+                    hb = WsHeartbeat.model_validate(msg)
+                    leased.update(hb.fbs)
+
+                    def renew(c: Controller, ids: list[int] = hb.fbs) -> None:
+                        for i in ids:
+                            c.renew_lease(i)
+
+                    await asyncio.to_thread(studio.runner.call, renew)
+                else:
+                    await ws.send_json({"type": "error", "detail": f"unknown message type {kind!r}"})
+            except ValidationError as err:
+                await ws.send_json({"type": "error", "detail": err.errors(include_url=False, include_context=False)})
+
+    task = asyncio.create_task(reader())
+    last_cycle = -1
+    last_sent = 0.0
+    loop = asyncio.get_running_loop()
+    since_event = studio.controller.events.last_seq
+    try:
+        while not task.done():
+            sub: WsSubscribe = state["sub"]
+            await asyncio.sleep(1.0 / sub.rate_hz)
+            snap = studio.runner.snapshot
+            now = loop.time()
+            new_events = studio.controller.events.last_seq != since_event
+            if snap.cycle == last_cycle and not new_events and now - last_sent < 1.0:
+                continue
+            payload = build_snapshot(studio, snap, sub, since_event)
+            if payload["events"]:
+                since_event = payload["events"][-1]["seq"]
+            elif studio.controller.events.last_seq < since_event:  # log cleared or controller replaced
+                since_event = studio.controller.events.last_seq
+            last_cycle, last_sent = snap.cycle, now
+            await ws.send_text(json.dumps(payload))
+    except (WebSocketDisconnect, RuntimeError):
+        pass
+    finally:
+        task.cancel()
+        with contextlib.suppress(BaseException):
+            await task
+        if leased:
+            def drop(c: Controller, ids: set[int] = leased) -> None:
+                for i in ids:
+                    entry = c.program.get(i)
+                    if entry is not None and entry.lease_s is not None:
+                        entry.fb.drop_dead_man()
+
+            with contextlib.suppress(Exception):
+                await asyncio.to_thread(studio.runner.call, drop)

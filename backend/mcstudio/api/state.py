@@ -1,0 +1,178 @@
+"""Application state shared by the routers: the runner (and its controller), the project folder, the 3D view."""
+
+from __future__ import annotations
+
+import threading
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from .. import __version__
+from ..controller.kernel import Controller, Snapshot
+from ..controller.mc.axis import axis_variables
+from ..controller.mc.enums import AxisState
+from ..controller.mc.module import drv_status
+from ..controller.runner import Runner
+from ..project.io import ProjectError, dump_project, load_project, save_project
+from ..project.models import Project
+from .models import AxisSummary, ControllerStatus, FBOut
+
+if TYPE_CHECKING:
+    from ..viz.scene import SceneServer
+
+_MOVING = {AxisState.Discrete, AxisState.Continuous, AxisState.Synchronized, AxisState.Homing, AxisState.Stopping}
+
+
+class ConflictError(Exception):
+    """The request is valid but cannot be applied in the controller's current state (HTTP 409)."""
+
+
+@dataclass
+class Studio:
+    runner: Runner
+    project_dir: Path | None
+    projects_root: Path | None
+    version: str = __version__
+    viz: SceneServer | None = None
+    saved_text: str = ""
+    lock: threading.Lock = field(default_factory=threading.Lock)
+
+    def __post_init__(self) -> None:
+        self._dirty_memo: tuple[Project, str, bool] | None = None
+        if not self.saved_text:
+            self.saved_text = dump_project(self.runner.controller.project)
+
+    # ------------------------------------------------------------------ controller views
+    @property
+    def controller(self) -> Controller:
+        return self.runner.controller
+
+    @property
+    def project(self) -> Project:
+        return self.runner.controller.project
+
+    def status(self, snap: Snapshot | None = None) -> ControllerStatus:
+        snap = snap or self.runner.snapshot
+        st = self.runner.status()
+        return ControllerStatus(
+            mode=st.mode,
+            period_s=snap.period_s,
+            cycle=snap.cycle,
+            time_s=snap.time_s,
+            rtf=round(st.rtf, 3),
+            overruns=st.overruns,
+            project=snap.project,
+            project_dirty=self.dirty,
+        )
+
+    @property
+    def dirty(self) -> bool:
+        project = self.project
+        memo = self._dirty_memo
+        if memo is None or memo[0] is not project or memo[1] != self.saved_text:
+            memo = (project, self.saved_text, dump_project(project) != self.saved_text)
+            self._dirty_memo = memo
+        return memo[2]
+
+    def axis_views(self, snap: Snapshot, names: list[str] | None = None) -> list[tuple[str, dict[str, Any]]]:
+        mc = snap.mc
+        out = []
+        for axis in self.controller.mc.axes:
+            if names is not None and axis.name not in names:
+                continue
+            i = axis.i
+            if i >= len(mc["discrete"]):
+                continue
+            row = {
+                "cmd_pos": float(mc["cmd_pos"][i]),
+                "cmd_vel": float(mc["cmd_vel"][i]),
+                "cmd_accdec": float(mc["cmd_accdec"][i]),
+                "cmd_jerk": float(mc["cmd_jerk"][i]),
+                "act_pos": float(mc["act_pos"][i]),
+                "act_vel": float(mc["act_vel"][i]),
+                "drv": drv_status(int(mc["drv"][i])),
+            }
+            out.append((axis.name, axis_variables(axis, mc["discrete"][i], row)))
+        return out
+
+    def axis_summaries(self, snap: Snapshot) -> list[AxisSummary]:
+        res = []
+        by_name = {a.name: a for a in self.controller.mc.axes}
+        for name, v in self.axis_views(snap):
+            a = by_name[name]
+            state = next(k for k, flag in v["Status"].items() if flag and k != "Ready")
+            res.append(AxisSummary(
+                name=name, number=a.number, type=a.type.name, use=a.config.use.name,
+                node_address=a.config.node_address, units=a.params.UnitConversion.UnitDisplay.name, state=state,
+                cmd_pos=v["Cmd"]["Pos"], act_pos=v["Act"]["Pos"], cmd_vel=v["Cmd"]["Vel"], act_vel=v["Act"]["Vel"],
+                servo_on=v["DrvStatus"]["ServoOn"], error_code=v["MFaultLvl"]["Code"],
+            ))
+        return res
+
+    def fb_out(self, snap: Snapshot, fb_id: int) -> FBOut | None:
+        view = snap.fbs.get(fb_id)
+        if view is None:
+            return None
+        return FBOut(id=view.id, type=view.type, inputs=view.inputs, outputs=view.outputs, lease_s=view.lease_s,
+                     cycle=snap.cycle)
+
+    # ------------------------------------------------------------------ project operations
+    def apply_project(self, project: Project) -> None:
+        """Replace the running controller with one built from `project` (cycle 0, like a download).
+
+        Refused (409) while an axis moves: a download restarts the controller."""
+        controller = Controller(project)
+
+        def swap(current: Controller) -> None:
+            moving = [a.name for a in current.mc.axes if a.state in _MOVING]
+            if moving:
+                raise ConflictError(
+                    "axes are moving (" + ", ".join(moving) + "); stop them before applying a new configuration, "
+                    "which restarts the controller like a download"
+                )
+            self.runner.replace_controller(controller)
+
+        self.runner.call(swap)
+        if self.viz is not None:
+            self.viz.rebuild(controller)
+
+    def save(self) -> Path:
+        if self.project_dir is None:
+            raise ConflictError("this studio was started without a project folder; nothing to save to")
+        with self.lock:
+            path = save_project(self.project_dir, self.project)
+            self.saved_text = dump_project(self.project)
+        return path
+
+    def list_projects(self) -> list[dict[str, Any]]:
+        root = self.projects_root
+        if root is None or not root.is_dir():
+            return []
+        out = []
+        for d in sorted(p for p in root.iterdir() if p.is_dir() and (p / "project.json").is_file()):
+            try:
+                proj = load_project(d)
+                out.append({"name": d.name, "title": proj.name, "path": str(d), "valid": True, "error": None})
+            except ProjectError as err:
+                out.append({"name": d.name, "title": d.name, "path": str(d), "valid": False, "error": str(err)})
+            out[-1]["current"] = self.project_dir is not None and d.resolve() == self.project_dir.resolve()
+        return out
+
+    def resolve_project_name(self, name: str) -> Path:
+        root = self.projects_root
+        if root is None:
+            raise ConflictError("no projects folder configured")
+        if "/" in name or "\\" in name or name in (".", "..") or name.startswith("."):
+            raise ValueError("a project name is a folder name inside the projects folder, without slashes")
+        folder = (root / name).resolve()
+        if folder.parent != root.resolve():
+            raise ValueError("project name escapes the projects folder")
+        return folder
+
+    def open_project(self, name: str) -> Project:
+        folder = self.resolve_project_name(name)
+        project = load_project(folder)
+        self.apply_project(project)
+        self.project_dir = folder
+        self.saved_text = dump_project(project)
+        return project

@@ -1,0 +1,224 @@
+"""The deterministic controller kernel: a fixed control period, a cycle counter and one call per period.
+
+One control period (architecture.md):
+  1. fieldbus exchange — drives receive last period's outputs, the mechanism advances, inputs are latched;
+  2. inputs — process image → axis actual values and drive status;
+  3. program — every FB instance is called in creation order;
+  4. motion — profiles advance, states update;
+  5. outputs — command values → process image;
+  6. snapshot publication.
+
+Time is `cycle × period`, never the wall clock: the same project and the same commands at the same cycles give
+bit-identical variables. The only wall-clock input is the dead-man lease of an FB instance, read through an injectable
+`clock` so tests can drive it. The kernel is single-threaded: other threads talk to it through `Runner` (commands at
+cycle boundaries) and read the published immutable `Snapshot`.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..fieldbus.network import Network
+from ..project.models import Project
+from .events import EventLog
+from .mc.enums import _eMC_AXIS_TYPE
+from .mc.fb.base import FBInputError, FunctionBlock
+from .mc.fb.registry import FB_TYPES
+from .mc.module import MotionModule
+
+
+class KernelError(Exception):
+    """A request the kernel refuses (unknown instance, wrong until-condition …); `field` names what is wrong."""
+
+    def __init__(self, field: str, message: str, status: int = 422) -> None:
+        super().__init__(f"{field}: {message}")
+        self.field = field
+        self.message = message
+        self.status = status
+
+
+@dataclass
+class ProgramEntry:
+    fb: FunctionBlock
+    lease_s: float | None = None
+    lease_deadline: float | None = None
+    created_cycle: int = 0
+
+
+@dataclass(frozen=True)
+class FBView:
+    id: int
+    type: str
+    inputs: dict[str, Any]
+    outputs: dict[str, Any]
+    lease_s: float | None
+
+
+@dataclass(frozen=True)
+class Snapshot:
+    """Immutable view of the controller after a cycle, for readers in other threads."""
+
+    cycle: int
+    time_s: float
+    period_s: float
+    project: str
+    mc: dict[str, Any]
+    fbs: dict[int, FBView]
+    event_seq: int
+    wall: float = field(default_factory=time.monotonic)
+
+
+@dataclass(frozen=True)
+class Until:
+    fb: int
+    output: str
+    equals: Any
+
+
+class Controller:
+    def __init__(self, project: Project, *, clock: Callable[[], float] = time.monotonic) -> None:
+        self.project = project
+        self.period_s = project.controller.period_s
+        self.clock = clock
+        self.events = EventLog()
+        real = [
+            a for a in project.axes
+            if a.use.name == "_mcUsedAxis" and a.type in (_eMC_AXIS_TYPE._mcServo, _eMC_AXIS_TYPE._mcEncdr)
+            and a.node_address is not None
+        ]
+        real.sort(key=lambda a: a.node_address or 0)
+        self.network = Network([a.node_address for a in real], [f"Node{a.node_address} ({a.name})" for a in real])  # type: ignore[misc]
+        self.mc = MotionModule(project, period_s=self.period_s, events=self.events, network=self.network)
+        self.cycle = 0
+        self.program: dict[int, ProgramEntry] = {}
+        self._next_id = 1
+        self.snapshot: Snapshot = self._make_snapshot()
+        self.events.add(cycle=0, time_s=0.0, source="controller", code="00000000", level="information",
+                        message=f"project '{project.name}' loaded: {len(self.mc.axes)} axes, "
+                        f"primary period {project.controller.primary_period_us} µs")
+
+    @property
+    def time_s(self) -> float:
+        return self.cycle * self.period_s
+
+    # ------------------------------------------------------------------ program (FB instances)
+    def fb(self, type_name: str, *, lease_s: float | None = None, **inputs: Any) -> FunctionBlock:
+        """Create an instruction instance; it is called every period from the next cycle on (PLC semantics)."""
+        cls = FB_TYPES.get(type_name)
+        if cls is None:
+            raise KernelError("type", f"unknown instruction {type_name!r}; GET /api/v1/fb-types lists them")
+        self._check_inouts(cls, inputs)
+        if lease_s is not None and not (0 < lease_s <= 3600):
+            raise KernelError("lease_s", "must be > 0 and at most 3600 seconds")
+        fb = cls(self.mc, self._next_id, inputs)
+        self._next_id += 1
+        entry = ProgramEntry(fb, lease_s, None, self.cycle)
+        if lease_s is not None:
+            entry.lease_deadline = self.clock() + lease_s
+        self.program[fb.id] = entry
+        return fb
+
+    def _check_inouts(self, cls: type[FunctionBlock], inputs: dict[str, Any]) -> None:
+        for var in cls.DEF.inouts:
+            if var.name in inputs:
+                value = var.coerce(inputs[var.name])
+                if var.type == "_sAXIS_REF" and value not in self.mc.by_name:
+                    known = ", ".join(self.mc.by_name) or "none"
+                    raise FBInputError(var.name, f"no axis named {value!r} in this project (axes: {known})")
+
+    def get_fb(self, fb_id: int) -> FunctionBlock:
+        entry = self.program.get(fb_id)
+        if entry is None:
+            raise KernelError("id", f"no function-block instance {fb_id}", status=404)
+        return entry.fb
+
+    def set_inputs(self, fb_id: int, inputs: dict[str, Any]) -> FunctionBlock:
+        fb = self.get_fb(fb_id)
+        self._check_inouts(type(fb), inputs)
+        fb.set_inputs(inputs)
+        self.renew_lease(fb_id)
+        return fb
+
+    def renew_lease(self, fb_id: int) -> None:
+        entry = self.program.get(fb_id)
+        if entry is not None and entry.lease_s is not None:
+            entry.lease_deadline = self.clock() + entry.lease_s
+
+    def delete_fb(self, fb_id: int) -> None:
+        entry = self.program.pop(fb_id, None)
+        if entry is None:
+            raise KernelError("id", f"no function-block instance {fb_id}", status=404)
+
+    def check_leases(self) -> None:
+        """Dead-man: an instance whose lease was not renewed drops its Execute/Enable-type inputs."""
+        now = None
+        for entry in self.program.values():
+            if entry.lease_deadline is None:
+                continue
+            now = self.clock() if now is None else now
+            if now >= entry.lease_deadline:
+                entry.lease_deadline = None
+                fb = entry.fb
+                if any(fb.inp.get(v.name) for v in fb.DEF.inputs if v.dead_man):
+                    fb.drop_dead_man()
+                    self.events.add(cycle=self.cycle, time_s=self.time_s, source=fb.label, code="00000000",
+                                    level="information",
+                                    message=f"lease of {entry.lease_s:g} s expired: Execute/Enable inputs set FALSE")
+
+    # ------------------------------------------------------------------ the control period
+    def run_cycle(self) -> None:
+        mc = self.mc
+        mc.cycle = self.cycle
+        self.network.exchange()
+        mc.inputs()
+        for entry in list(self.program.values()):
+            entry.fb.call()
+        mc.motion()
+        mc.outputs()
+        self.cycle += 1
+
+    def step(self, cycles: int = 1, until: Until | None = None, *, publish: bool = True) -> int:
+        """Run `cycles` periods (stopping early once `until` holds). Returns the number of cycles run."""
+        if until is not None:
+            fb = self.get_fb(until.fb)
+            if until.output not in fb.out:
+                raise KernelError("until.output", f"{fb.DEF.name} has no output {until.output!r}; outputs: "
+                                  + ", ".join(fb.out))
+        n = 0
+        for _ in range(cycles):
+            self.check_leases()
+            self.run_cycle()
+            n += 1
+            if until is not None and self.until_holds(until):
+                break
+        if publish:
+            self.publish()
+        return n
+
+    def until_holds(self, until: Until) -> bool:
+        entry = self.program.get(until.fb)
+        if entry is None:
+            return True
+        fb = entry.fb
+        raw = fb.out[until.output]
+        if isinstance(until.equals, bool):
+            return isinstance(raw, bool) and raw == until.equals
+        if raw == until.equals:
+            return True
+        return fb.outputs_json()[until.output] == until.equals
+
+    # ------------------------------------------------------------------ snapshot
+    def _make_snapshot(self) -> Snapshot:
+        fbs = {
+            fid: FBView(fid, e.fb.DEF.name, e.fb.inputs_json(), e.fb.outputs_json(), e.lease_s)
+            for fid, e in self.program.items()
+        }
+        return Snapshot(self.cycle, self.time_s, self.period_s, self.project.name, self.mc.capture(), fbs,
+                        self.events.last_seq)
+
+    def publish(self) -> Snapshot:
+        self.snapshot = self._make_snapshot()
+        return self.snapshot

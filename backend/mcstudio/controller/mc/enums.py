@@ -1,0 +1,145 @@
+"""Enumerations of the NJ/NX MC function module, with the manual's literal names and values.
+
+Source: `omron-mc-basics.md` §2.7 (seed 000 lines 1957–2009) and the enumerations embedded in §2.3/§2.4.
+Members keep the vendor spelling (`_mcAborting`), so code reads against the manual.
+"""
+
+from __future__ import annotations
+
+import enum
+
+
+class _eMC_BUFFER_MODE(enum.IntEnum):
+    _mcAborting = 0
+    _mcBuffered = 1
+    _mcBlendingLow = 2
+    _mcBlendingPrevious = 3
+    _mcBlendingNext = 4
+    _mcBlendingHigh = 5
+
+
+class _eMC_DIRECTION(enum.IntEnum):
+    _mcPositiveDirection = 0
+    _mcShortestWay = 1
+    _mcNegativeDirection = 2
+    _mcCurrentDirection = 3
+    _mcNoDirection = 4
+
+
+class _eMC_STOP_MODE(enum.IntEnum):
+    _mcDecelerationStop = 0
+    _mcImmediateStop = 1
+    _mcImmediateStopFEReset = 2
+    _mcFreeRunStop = 3
+    _mcNonStop = 4
+
+
+class _eMC_MOVE_MODE(enum.IntEnum):
+    _mcAbsolute = 0
+    _mcRelative = 1
+    _mcVelocity = 2
+
+
+class _eMC_AXIS_TYPE(enum.IntEnum):
+    _mcServo = 0
+    _mcEncdr = 1
+    _mcVirServo = 2
+    _mcVirEncdr = 3
+
+
+class _eMC_AXIS_USE(enum.IntEnum):
+    _mcNoneAxis = 0
+    _mcUnusedAxis = 1
+    _mcUsedAxis = 2
+
+
+class _eMC_UNITS(enum.IntEnum):
+    _mcPls = 0
+    _mcMm = 1
+    _mcUm = 2
+    _mcNm = 3
+    _mcDeg = 4
+    _mcInch = 5
+
+
+class _eMC_COUNT_MODE(enum.IntEnum):
+    _mcCountModeLinear = 0
+    _mcCountModeRotary = 1
+
+
+class _eMC_ACCDECOVER(enum.IntEnum):
+    _mcAccDecOverBuffer = 0
+    _mcAccDecOverRapid = 1
+    _mcAccDecOverErrorStop = 2
+
+
+class _eMC_REVERSE_MODE(enum.IntEnum):
+    _mcReverseModeDecelerationStop = 0
+    _mcReverseModeImmediateStop = 1
+
+
+class _eMC_SWLMT_MODE(enum.IntEnum):
+    _mcNonSwLmt = 0
+    _mcCmdDecelerationStop = 1
+    _mcCmdImmediateStop = 2
+    _mcActDecelerationStop = 3
+    _mcActImmediateStop = 4
+
+
+class _eMC_HOMING_MODE(enum.IntEnum):
+    _mcHomeSwTurnHomeSwOff = 0
+    _mcHomeSwTurnHomeSwOn = 1
+    _mcHomeSwOff = 4
+    _mcHomeSwOn = 5
+    _mcLimitInputOff = 8
+    _mcHomeSwTurnHomeMask = 9
+    _mcLimitInputOnly = 11
+    _mcHomeSwTurnHoldingTime = 12
+    _mcNoHomeSwHoldingHomeInput = 13
+    _mcHomePreset = 14
+
+
+class _eMC_HOME_INPUT(enum.IntEnum):
+    _mcZPhase = 0
+    _mcExternalSignal = 1
+
+
+class _eMC_LIMIT_REVERSE_MODE(enum.IntEnum):
+    _mcErrorStop = 0
+    _mcRevImmediateStop = 1
+    _mcRevDecelerationStop = 2
+
+
+ENUMS: dict[str, type[enum.IntEnum]] = {
+    cls.__name__: cls
+    for cls in (
+        _eMC_BUFFER_MODE,
+        _eMC_DIRECTION,
+        _eMC_STOP_MODE,
+        _eMC_MOVE_MODE,
+        _eMC_AXIS_TYPE,
+        _eMC_AXIS_USE,
+        _eMC_UNITS,
+        _eMC_COUNT_MODE,
+        _eMC_ACCDECOVER,
+        _eMC_REVERSE_MODE,
+        _eMC_SWLMT_MODE,
+        _eMC_HOMING_MODE,
+        _eMC_HOME_INPUT,
+        _eMC_LIMIT_REVERSE_MODE,
+    )
+}
+
+
+class AxisState(enum.IntEnum):
+    """The nine mutually exclusive axis states (A-3.2 letters A–I), one of which is TRUE in `Status`."""
+
+    Disabled = 0
+    Standstill = 1
+    Discrete = 2
+    Continuous = 3
+    Synchronized = 4
+    Homing = 5
+    Stopping = 6
+    ErrorStop = 7
+    Coordinated = 8

@@ -1,0 +1,384 @@
+"""Function-block framework: instruction definitions, input coercion and the PLC call semantics.
+
+An instruction is defined once (`FBDef`: name, inputs, outputs, in-outs with types, defaults, ranges and units); the
+definition drives the emulator, input validation at the API and the `GET /api/v1/fb-types` catalog the studio renders
+its forms from. Instances are called once per period in program order, like FB calls in a PLC program, and read the
+MC module's progress at each call.
+
+Output timing of Execute-type instructions (`omron-mc-basics.md` §2.5/§2.8, `omron-group-and-cam.md` §0.1):
+Busy rises with the Execute edge; Active follows one period later; Done/CommandAborted stay TRUE while Execute is held,
+or for exactly one period if Execute was already FALSE; Error is sticky until the error is reset (Omron deviation from
+PLCopen) and a new rising edge is needed afterwards.
+"""
+
+from __future__ import annotations
+
+import enum
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, ClassVar
+
+from ..enums import ENUMS
+from ..errors import E_ILLEGAL_AXIS, E_REEXEC_DISABLED
+from ..jobs import JobStatus
+
+if TYPE_CHECKING:
+    from ..axis import Axis
+    from ..jobs import Job
+    from ..module import MotionModule
+
+INT_RANGES = {
+    "SINT": (-128, 127),
+    "INT": (-32768, 32767),
+    "DINT": (-(2**31), 2**31 - 1),
+    "USINT": (0, 255),
+    "UINT": (0, 65535),
+    "UDINT": (0, 2**32 - 1),
+    "WORD": (0, 65535),
+}
+
+
+class FBInputError(ValueError):
+    """An input value has the wrong type for its variable; `field` names the variable."""
+
+    def __init__(self, field: str, message: str) -> None:
+        super().__init__(f"{field}: {message}")
+        self.field = field
+        self.message = message
+
+
+@dataclass(frozen=True)
+class Var:
+    name: str
+    type: str  # BOOL, LREAL, UINT, WORD, an _eMC_ enumeration, or _sAXIS_REF for in-outs
+    default: Any = None
+    description: str = ""
+    unit: str | None = None
+    valid: str | None = None  # the manual's "valid range" column, as text
+    allowed: tuple[int, ...] | None = None  # enumerators valid for this instruction (others → the manual's ErrorID)
+    dead_man: bool = False  # Execute/Enable-type input that a lease drops to FALSE
+
+    @property
+    def enum(self) -> type[enum.IntEnum] | None:
+        return ENUMS.get(self.type)
+
+    def coerce(self, value: Any) -> Any:
+        """Convert a JSON value to the variable's Python value or raise FBInputError."""
+        t = self.type
+        if t == "BOOL":
+            if isinstance(value, bool):
+                return value
+            if isinstance(value, int) and value in (0, 1):
+                return bool(value)
+            raise FBInputError(self.name, f"expected a BOOL (true/false), got {value!r}")
+        if t in ("LREAL", "REAL"):
+            if isinstance(value, bool) or not isinstance(value, int | float):
+                raise FBInputError(self.name, f"expected a number ({t}), got {value!r}")
+            v = float(value)
+            if not math.isfinite(v):
+                raise FBInputError(self.name, f"expected a finite number ({t}), got {value!r}")
+            return v
+        if t in INT_RANGES:
+            lo, hi = INT_RANGES[t]
+            if isinstance(value, bool) or not isinstance(value, int | float) or float(value) != int(value):
+                raise FBInputError(self.name, f"expected an integer ({t}), got {value!r}")
+            v = int(value)
+            if not lo <= v <= hi:
+                raise FBInputError(self.name, f"{v} is outside the {t} range {lo}…{hi}")
+            return v
+        en = self.enum
+        if en is not None:
+            # Names must exist; any INT number is passed on so the instruction can answer with the manual's ErrorID
+            # for an out-of-range enumerator (e.g. 542B for BufferMode), as the controller does.
+            if isinstance(value, str):
+                if value in en.__members__:
+                    return int(en[value])
+                if value.lstrip("-").isdigit():
+                    value = int(value)
+                else:
+                    raise FBInputError(self.name, f"{value!r} is not an enumerator of {t}; use one of "
+                                       + ", ".join(m.name for m in en))
+            if isinstance(value, bool) or not isinstance(value, int):
+                raise FBInputError(self.name, f"expected an enumerator name or number of {t}, got {value!r}")
+            if not -32768 <= value <= 32767:
+                raise FBInputError(self.name, f"{value} is outside the INT range of an enumeration")
+            return value
+        if t in ("_sAXIS_REF", "_sGROUP_REF"):
+            if not isinstance(value, str) or not value:
+                raise FBInputError(self.name, f"expected the name of an axis variable, got {value!r}")
+            return value
+        raise FBInputError(self.name, f"unsupported data type {t}")
+
+    def present(self, value: Any) -> Any:
+        """Python value → JSON value (enumerations as their names when valid)."""
+        en = self.enum
+        if en is not None and isinstance(value, int):
+            try:
+                return en(value).name
+            except ValueError:
+                return value
+        if self.type == "WORD" and isinstance(value, int):
+            return f"{value:04X}"
+        return value
+
+    def catalog(self) -> dict[str, Any]:
+        en = self.enum
+        out: dict[str, Any] = {
+            "name": self.name,
+            "type": self.type,
+            "default": self.present(self.default),
+            "description": self.description,
+            "unit": self.unit,
+            "valid": self.valid,
+        }
+        if en is not None:
+            out["enumerators"] = [
+                {"name": m.name, "value": int(m)} for m in en if self.allowed is None or int(m) in self.allowed
+            ]
+        return out
+
+
+@dataclass(frozen=True)
+class FBDef:
+    name: str
+    title: str
+    summary: str
+    kind: str  # "execute" | "enable"
+    inputs: tuple[Var, ...]
+    outputs: tuple[Var, ...]
+    inouts: tuple[Var, ...] = ()
+    spec: str = ""  # where the behaviour is specified
+    status: str = "complete"
+    notes: str = ""
+    by_name: dict[str, Var] = field(default_factory=dict, compare=False)
+
+    def __post_init__(self) -> None:
+        for v in (*self.inouts, *self.inputs):
+            self.by_name[v.name] = v
+
+    def catalog(self) -> dict[str, Any]:
+        return {
+            "name": self.name,
+            "title": self.title,
+            "summary": self.summary,
+            "kind": self.kind,
+            "inputs": [v.catalog() for v in self.inputs],
+            "outputs": [v.catalog() for v in self.outputs],
+            "inouts": [v.catalog() for v in self.inouts],
+            "spec": self.spec,
+            "status": self.status,
+            "notes": self.notes,
+        }
+
+
+# Output variables shared by most instructions
+O_DONE = Var("Done", "BOOL", False, "TRUE when the instruction completes")
+O_BUSY = Var("Busy", "BOOL", False, "TRUE once the instruction is acknowledged")
+O_ACTIVE = Var("Active", "BOOL", False, "TRUE while the instruction is controlling the axis")
+O_ABORTED = Var("CommandAborted", "BOOL", False, "TRUE when the instruction was aborted or could not start")
+O_ERROR = Var("Error", "BOOL", False, "TRUE while an error exists; cleared by an error reset")
+O_ERRORID = Var("ErrorID", "WORD", 0, "Error code (16#0000 = normal)")
+IO_AXIS = Var("Axis", "_sAXIS_REF", None, "Axis (name of the axis variable, e.g. MC_Axis000)")
+I_EXECUTE = Var("Execute", "BOOL", False, "The instruction starts on the rising edge", dead_man=True)
+
+
+class FunctionBlock:
+    """Base of all instruction instances. Inputs and outputs are also readable/writable as attributes."""
+
+    DEF: ClassVar[FBDef]
+
+    def __init__(self, mc: MotionModule, fb_id: int, inputs: dict[str, Any] | None = None) -> None:
+        object.__setattr__(self, "_ready", False)
+        self.mc = mc
+        self.id = fb_id
+        self.inp: dict[str, Any] = {v.name: v.default for v in (*self.DEF.inouts, *self.DEF.inputs)}
+        self.out: dict[str, Any] = {v.name: v.default for v in self.DEF.outputs}
+        self._err_axis: Axis | None = None
+        self._err_gen = 0
+        if inputs:
+            self.set_inputs(inputs)
+        object.__setattr__(self, "_ready", True)
+
+    # -- handle-style access (viser convention): fb.Execute = True; fb.Done
+    def __getattr__(self, name: str) -> Any:
+        d = self.__dict__
+        if "inp" in d and name in d["inp"]:
+            return d["inp"][name]
+        if "out" in d and name in d["out"]:
+            return d["out"][name]
+        raise AttributeError(name)
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        if self.__dict__.get("_ready") and name in self.DEF.by_name:
+            self.set_inputs({name: value})
+        else:
+            object.__setattr__(self, name, value)
+
+    def set_inputs(self, values: dict[str, Any]) -> None:
+        coerced = {}
+        for k, v in values.items():
+            var = self.DEF.by_name.get(k)
+            if var is None:
+                raise FBInputError(k, f"{self.DEF.name} has no input or in-out named {k!r}")
+            coerced[k] = var.coerce(v)
+        self.inp.update(coerced)
+
+    def drop_dead_man(self) -> None:
+        for v in self.DEF.inputs:
+            if v.dead_man:
+                self.inp[v.name] = False
+
+    @property
+    def label(self) -> str:
+        return f"fb {self.id} {self.DEF.name}"
+
+    def outputs_json(self) -> dict[str, Any]:
+        return {v.name: v.present(self.out[v.name]) for v in self.DEF.outputs}
+
+    def inputs_json(self) -> dict[str, Any]:
+        defs = self.DEF.by_name
+        return {k: defs[k].present(v) for k, v in self.inp.items()}
+
+    def resolve_axis(self) -> Axis | None:
+        return self.mc.by_name.get(self.inp.get("Axis") or "")
+
+    # -- error latch: Error stays TRUE until the axis error is reset (or, without an axis, a common reset)
+    def _set_error(self, code: int, axis: Axis | None) -> None:
+        o = self.out
+        o["Error"] = True
+        o["ErrorID"] = code
+        for k in ("Busy", "Active", "Done", "CommandAborted", "Status", "InVelocity"):
+            if k in o:
+                o[k] = False
+        self._err_axis = axis
+        self._err_gen = axis.reset_generation if axis is not None else 0
+
+    def _error_released(self) -> bool:
+        ax = self._err_axis
+        return ax is not None and ax.reset_generation != self._err_gen
+
+    def fail(self, code: int, axis: Axis | None, *, fault_axis: bool = True) -> None:
+        """The instruction ends in Error with `code`; the axis gets the minor fault (A-1 source Axis)."""
+        self._set_error(code, axis)
+        if axis is not None and fault_axis:
+            axis.raise_error(code, source=self.label)
+        elif axis is None:
+            self.mc.log_error(code, axis=None, source=self.label)
+
+    def call(self) -> None:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+
+class ExecuteFB(FunctionBlock):
+    """Execute-type instruction with a motion job: Busy/Active/Done/CommandAborted/Error timing."""
+
+    HAS_ACTIVE: ClassVar[bool] = True
+    REEXECUTABLE: ClassVar[bool] = False
+
+    def __init__(self, mc: MotionModule, fb_id: int, inputs: dict[str, Any] | None = None) -> None:
+        super().__init__(mc, fb_id, inputs)
+        self._prev_exe = False
+        self._end_cycle = -1
+        self.job: Job | None = None
+        self.axis: Axis | None = None
+
+    # subclasses implement these
+    def execute(self, axis: Axis) -> None:
+        raise NotImplementedError
+
+    def reexecute(self, axis: Axis) -> None:
+        self.fail(E_REEXEC_DISABLED, axis)
+
+    def on_job_end(self) -> None:
+        """Hook after the job ended (e.g. MC_Stop releases the Stopping hold)."""
+
+    def _finish(self, flag: str) -> None:
+        o = self.out
+        o["Busy"] = False
+        if "Active" in o:
+            o["Active"] = False
+        if "InVelocity" in o:
+            o["InVelocity"] = False
+        o[flag] = True
+        self._end_cycle = self.mc.cycle
+
+    def sync_job(self) -> None:
+        """Read the job's progress (the MC module's processing of the previous period)."""
+        job = self.job
+        if job is None:
+            return
+        st = job.status
+        o = self.out
+        if st == JobStatus.ACTIVE:
+            if self.HAS_ACTIVE:
+                o["Active"] = True
+            if "InVelocity" in o:
+                o["InVelocity"] = job.in_velocity
+        elif st == JobStatus.DONE:
+            self.job = None
+            self._finish("Done")
+            self.on_job_end()
+        elif st == JobStatus.ABORTED:
+            self.job = None
+            self._finish("CommandAborted")
+            self.on_job_end()
+        elif st == JobStatus.ERROR:
+            self.job = None
+            self._set_error(job.error_id, self.axis)
+            self.on_job_end()
+
+    def call(self) -> None:
+        o = self.out
+        exe = bool(self.inp["Execute"])
+        edge = exe and not self._prev_exe
+        self._prev_exe = exe
+        if o["Error"] and self._error_released():
+            o["Error"] = False
+            o["ErrorID"] = 0
+        if not exe and self._end_cycle < self.mc.cycle:
+            # completion flags: held while Execute is TRUE, one period only if it was already FALSE
+            for k in ("Done", "CommandAborted", "Failure"):
+                if k in o:
+                    o[k] = False
+        self.sync_job()
+        if edge and not o["Error"]:
+            if o["Busy"]:
+                axis = self.resolve_axis()
+                if axis is not self.axis:
+                    self.fail(0x5453 if axis is not None else E_ILLEGAL_AXIS, self.axis)
+                    return
+                self.reexecute(self.axis)  # type: ignore[arg-type]
+                return
+            for k in ("Done", "CommandAborted", "Failure"):
+                if k in o:
+                    o[k] = False
+            axis = self.resolve_axis()
+            self.axis = axis
+            if axis is None:
+                self.fail(E_ILLEGAL_AXIS, None)
+                return
+            o["Busy"] = True
+            self.execute(axis)
+        self.after_call(exe)
+
+    def after_call(self, exe: bool) -> None:
+        """Hook for per-call work of running instructions (e.g. MC_Stop's Stopping hold)."""
+
+    # helpers for subclasses
+    def start_job(self, axis: Axis, job: Job) -> None:
+        """Submit a motion job with the manual's acceptance rules; sets outputs for refusals."""
+        verdict, code = axis.check_start(jog=False)
+        self._submit(axis, job, verdict, code)
+
+    def _submit(self, axis: Axis, job: Job, verdict: str, code: int) -> None:
+        if verdict == "abort":
+            self._finish("CommandAborted")
+            return
+        if verdict == "error":
+            self.fail(code, axis)
+            return
+        err = axis.submit(job)
+        if err:
+            self.fail(err, axis)
+            return
+        self.job = job

@@ -1,0 +1,578 @@
+"""Single-axis instructions: MC_Power, MC_Reset, MC_Stop, MC_MoveAbsolute, MC_MoveRelative, MC_MoveVelocity,
+MC_MoveJog — inputs, outputs and rules as in `omron-axis-instructions.md` (seed 000, chapter 3).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from .. import errors as E
+from ..enums import _eMC_BUFFER_MODE, _eMC_DIRECTION
+from ..jobs import Job, JobKind, JobStatus
+from ..units import fits_distance, fits_position
+from .base import (
+    I_EXECUTE,
+    IO_AXIS,
+    O_ABORTED,
+    O_ACTIVE,
+    O_BUSY,
+    O_DONE,
+    O_ERROR,
+    O_ERRORID,
+    ExecuteFB,
+    FBDef,
+    FunctionBlock,
+    Var,
+)
+
+if TYPE_CHECKING:
+    from ..axis import Axis
+
+_DIRS = tuple(int(d) for d in _eMC_DIRECTION)
+_BUFS = tuple(int(b) for b in _eMC_BUFFER_MODE)
+
+I_VELOCITY = Var("Velocity", "LREAL", 0.0, "Target velocity", "unit/s", "positive")
+I_ACC = Var("Acceleration", "LREAL", 0.0, "Acceleration (0 = step change)", "unit/s²", "positive or 0")
+I_DEC = Var("Deceleration", "LREAL", 0.0, "Deceleration (0 = step change)", "unit/s²", "positive or 0")
+I_JERK = Var("Jerk", "LREAL", 0.0, "Jerk (0 = trapezoid)", "unit/s³", "positive or 0")
+I_DIRECTION = Var("Direction", "_eMC_DIRECTION", 0, "Direction (Rotary Mode only)", None, "0–4")
+I_BUFFER = Var("BufferMode", "_eMC_BUFFER_MODE", 0, "Behaviour on multi-execution", None, "0–5")
+
+
+def _clamp_profile(axis: Axis, velocity: float, acc: float, dec: float) -> tuple[float, float, float]:
+    """§2.6 clamping: velocity to [1 pulse/s, MaxVel], acc/dec to the axis maxima (0 = no limit)."""
+    op = axis.params.Operation
+    v = min(velocity, op.MaxVel)
+    if 0 < v * axis.ppu < 1.0:
+        v = 1.0 / axis.ppu
+    if op.MaxAcc > 0 and acc > op.MaxAcc:
+        acc = op.MaxAcc
+    if op.MaxDec > 0 and dec > op.MaxDec:
+        dec = op.MaxDec
+    return v, acc, dec
+
+
+def _check_acc_dec_jerk(acc: float, dec: float, jerk: float) -> int:
+    if acc < 0:
+        return E.E_ACCELERATION
+    if dec < 0:
+        return E.E_DECELERATION
+    if jerk < 0:
+        return E.E_JERK
+    return 0
+
+
+# --------------------------------------------------------------------------------------------------- MC_Power
+class MC_Power(FunctionBlock):
+    DEF = FBDef(
+        name="MC_Power",
+        title="Power servo",
+        summary="Puts the drive into the operation-ready state (servo ON) while Enable is TRUE.",
+        kind="enable",
+        inouts=(IO_AXIS,),
+        inputs=(Var("Enable", "BOOL", False, "TRUE: servo ON; FALSE: servo OFF", dead_man=True),),
+        outputs=(
+            Var("Status", "BOOL", False, "TRUE when the axis is operation-ready (servo ON)"),
+            O_BUSY,
+            O_ERROR,
+            O_ERRORID,
+        ),
+        spec="omron-axis-instructions.md MC_Power (seed 000 line 2456)",
+    )
+
+    def __init__(self, mc: Any, fb_id: int, inputs: dict[str, Any] | None = None) -> None:
+        super().__init__(mc, fb_id, inputs)
+        self._prev_enable = False
+
+    def call(self) -> None:
+        o = self.out
+        enable = bool(self.inp["Enable"])
+        changed = enable != self._prev_enable
+        self._prev_enable = enable
+        if o["Error"] and self._error_released():
+            o["Error"] = False
+            o["ErrorID"] = 0
+        axis = self.resolve_axis()
+        if axis is None:
+            o["Busy"] = o["Status"] = False
+            if enable and changed and not o["Error"]:
+                self.fail(E.E_ILLEGAL_AXIS, None)
+            return
+        if o["Error"]:
+            o["Busy"] = o["Status"] = False
+            if not enable:
+                axis.power(self.id, False, changed)
+            return
+        if enable and changed:
+            if axis.encoder:
+                self.fail(E.E_AXIS_TYPE, axis)
+                return
+            if not axis.virtual and not (int(axis.m.drv[axis.i]) & 0x4):
+                self.fail(E.E_MAIN_POWER_OFF, axis, fault_axis=True)
+                return
+        axis.power(self.id, enable, changed)
+        o["Busy"] = enable
+        o["Status"] = axis.servo_on
+
+
+# --------------------------------------------------------------------------------------------------- MC_Reset
+class MC_Reset(ExecuteFB):
+    DEF = FBDef(
+        name="MC_Reset",
+        title="Reset axis error",
+        summary="Clears the axis error (and drive error). Fails while the axis still decelerates from the error.",
+        kind="execute",
+        inouts=(IO_AXIS,),
+        inputs=(I_EXECUTE,),
+        outputs=(
+            O_DONE,
+            O_BUSY,
+            Var("Failure", "BOOL", False, "TRUE when the reset could not be performed (axis still stopping)"),
+            O_ERROR,
+            O_ERRORID,
+        ),
+        spec="omron-axis-instructions.md MC_Reset (seed 000 line 12664)",
+    )
+    HAS_ACTIVE = False
+
+    def execute(self, axis: Axis) -> None:
+        ok = axis.reset()
+        self._result = "Done" if ok else "Failure"
+
+    def sync_job(self) -> None:
+        result = getattr(self, "_result", None)
+        if result:
+            self._result = None
+            self._finish(result)
+
+
+# --------------------------------------------------------------------------------------------------- MC_Stop
+class MC_Stop(ExecuteFB):
+    DEF = FBDef(
+        name="MC_Stop",
+        title="Stop",
+        summary="Decelerates the axis to a stop; the axis stays in Stopping while Execute is TRUE.",
+        kind="execute",
+        inouts=(IO_AXIS,),
+        inputs=(
+            I_EXECUTE,
+            Var("Deceleration", "LREAL", 0.0, "Deceleration (0 = immediate stop)", "unit/s²", "positive or 0"),
+            I_JERK,
+            Var("BufferMode", "_eMC_BUFFER_MODE", 0, "Reserved: only _mcAborting", None, "0", allowed=(0,)),
+        ),
+        outputs=(O_DONE, O_BUSY, O_ACTIVE, O_ABORTED, O_ERROR, O_ERRORID),
+        spec="omron-axis-instructions.md MC_Stop (seed 000 line 5817)",
+    )
+    REEXECUTABLE = True
+
+    def __init__(self, mc: Any, fb_id: int, inputs: dict[str, Any] | None = None) -> None:
+        super().__init__(mc, fb_id, inputs)
+        self._holding: Axis | None = None
+
+    def execute(self, axis: Axis) -> None:
+        i = self.inp
+        if axis.state.name != "ErrorStop":
+            code = _check_acc_dec_jerk(0.0, i["Deceleration"], i["Jerk"])
+            if not code and i["BufferMode"] != 0:
+                code = E.E_BUFFER_MODE
+            if not code and axis.encoder:
+                code = E.E_AXIS_TYPE
+            if code:
+                self.fail(code, axis)
+                return
+        dec = i["Deceleration"]
+        if axis.params.Operation.MaxDec > 0:
+            dec = min(dec, axis.params.Operation.MaxDec)
+        job = Job(JobKind.STOP, self, deceleration=dec, jerk=i["Jerk"])
+        verdict = axis.stop(job)
+        if verdict == "abort":
+            self._finish("CommandAborted")
+            return
+        if verdict == "done":
+            job.status = JobStatus.DONE
+        self.job = job
+        self._holding = axis
+        axis.hold_stop(self.id, True)
+
+    def reexecute(self, axis: Axis) -> None:
+        # Only Deceleration can change (Jerk is kept) — MC_Stop functional rules.
+        job = self.job
+        if job is None:
+            return
+        dec = self.inp["Deceleration"]
+        if dec < 0:
+            self.fail(E.E_DECELERATION, axis)
+            return
+        job.deceleration = dec
+        axis.replan(job)
+
+    def after_call(self, exe: bool) -> None:
+        if self._holding is not None and not exe:
+            self._holding.hold_stop(self.id, False)
+            self._holding = None
+
+
+# --------------------------------------------------------------------------------------------------- positioning
+class _PositionFB(ExecuteFB):
+    REEXECUTABLE = True
+    RELATIVE = False
+
+    def _target_inputs(self, axis: Axis) -> tuple[int, float]:
+        """(error code, absolute target or distance)."""
+        raise NotImplementedError
+
+    def _check(self, axis: Axis) -> int:
+        i = self.inp
+        v = i["Velocity"]
+        if not v > 0:
+            return E.E_VELOCITY
+        code = _check_acc_dec_jerk(i["Acceleration"], i["Deceleration"], i["Jerk"])
+        if code:
+            return code
+        if "Direction" in i and i["Direction"] not in _DIRS:
+            return E.E_DIRECTION
+        if i["BufferMode"] not in _BUFS:
+            return E.E_BUFFER_MODE
+        code, _ = self._target_inputs(axis)
+        return code
+
+    def _fill(self, job: Job, axis: Axis) -> None:
+        i = self.inp
+        job.velocity, job.acceleration, job.deceleration = _clamp_profile(
+            axis, i["Velocity"], i["Acceleration"], i["Deceleration"]
+        )
+        job.jerk = i["Jerk"]
+        _, value = self._target_inputs(axis)
+        if self.RELATIVE:
+            job.relative = True
+            job.distance = value
+            if job.origin is not None:
+                job.target = job.origin + value  # re-execution measures from the original start
+        else:
+            job.target = value
+
+    def execute(self, axis: Axis) -> None:
+        verdict, code = axis.check_start()
+        if verdict == "abort":
+            self._finish("CommandAborted")
+            return
+        code = self._check(axis) or code
+        if code:
+            self.fail(code, axis)
+            return
+        i = self.inp
+        job = Job(JobKind.POSITION, self, buffer_mode=i["BufferMode"], direction=i.get("Direction", 0))
+        job.info["latched"] = {k: i[k] for k in ("Jerk", "BufferMode", "Direction") if k in i}
+        self._fill(job, axis)
+        self._submit(axis, job, "ok", 0)
+
+    def reexecute(self, axis: Axis) -> None:
+        job = self.job
+        if job is None:
+            return
+        latched = job.info.get("latched", {})
+        i = self.inp
+        for name, code in (("Jerk", E.E_REEXEC_JERK), ("BufferMode", E.E_REEXEC_BUFFER_MODE),
+                           ("Direction", E.E_REEXEC_DIRECTION)):
+            if name in latched and i[name] != latched[name]:
+                self.fail(code, axis)
+                return
+        code = self._check(axis)
+        if code:
+            self.fail(code, axis)
+            return
+        self._fill(job, axis)
+        axis.replan(job)
+
+
+class MC_MoveAbsolute(_PositionFB):
+    DEF = FBDef(
+        name="MC_MoveAbsolute",
+        title="Absolute positioning",
+        summary="Positions to a target given in absolute coordinates.",
+        kind="execute",
+        inouts=(IO_AXIS,),
+        inputs=(
+            I_EXECUTE,
+            Var("Position", "LREAL", 0.0, "Target position (absolute)", "unit", "negative, positive or 0"),
+            I_VELOCITY,
+            I_ACC,
+            I_DEC,
+            I_JERK,
+            I_DIRECTION,
+            I_BUFFER,
+        ),
+        outputs=(O_DONE, O_BUSY, O_ACTIVE, O_ABORTED, O_ERROR, O_ERRORID),
+        spec="omron-axis-instructions.md MC_MoveAbsolute (seed 000 line 3491)",
+        status="partial",
+        notes="Aborting and Buffered multi-execution; blending modes, rotary-mode directions, software limits and "
+        "override arrive with the single-axis conformance issue.",
+    )
+
+    def _target_inputs(self, axis: Axis) -> tuple[int, float]:
+        pos = self.inp["Position"]
+        if not fits_position(pos, axis.ppu):
+            return E.E_TARGET_POSITION, pos
+        return 0, pos
+
+
+class MC_MoveRelative(_PositionFB):
+    RELATIVE = True
+    DEF = FBDef(
+        name="MC_MoveRelative",
+        title="Relative positioning",
+        summary="Positions by a travel distance from the command current position.",
+        kind="execute",
+        inouts=(IO_AXIS,),
+        inputs=(
+            I_EXECUTE,
+            Var("Distance", "LREAL", 0.0, "Travel distance (sign = direction)", "unit", "negative, positive or 0"),
+            I_VELOCITY,
+            I_ACC,
+            I_DEC,
+            I_JERK,
+            I_BUFFER,
+        ),
+        outputs=(O_DONE, O_BUSY, O_ACTIVE, O_ABORTED, O_ERROR, O_ERRORID),
+        spec="omron-axis-instructions.md MC_MoveRelative (seed 000 line 4307)",
+        status="partial",
+        notes="Aborting and Buffered multi-execution; re-execution measures from the original start. Blending and "
+        "override arrive with the single-axis conformance issue.",
+    )
+
+    def _target_inputs(self, axis: Axis) -> tuple[int, float]:
+        d = self.inp["Distance"]
+        if not fits_distance(d, axis.ppu):
+            return E.E_TRAVEL_DISTANCE, d
+        return 0, d
+
+
+# --------------------------------------------------------------------------------------------------- MC_MoveVelocity
+class MC_MoveVelocity(ExecuteFB):
+    DEF = FBDef(
+        name="MC_MoveVelocity",
+        title="Velocity control",
+        summary="Velocity control in position control mode: runs at the target velocity until aborted.",
+        kind="execute",
+        inouts=(IO_AXIS,),
+        inputs=(
+            I_EXECUTE,
+            Var("Velocity", "LREAL", 0.0, "Target velocity", "unit/s", "positive or 0"),
+            I_ACC,
+            I_DEC,
+            I_JERK,
+            Var("Direction", "_eMC_DIRECTION", 0, "Direction", None, "0, 2, 3", allowed=(0, 2, 3)),
+            Var("Continuous", "BOOL", False, "Reserved"),
+            Var("BufferMode", "_eMC_BUFFER_MODE", 0, "Behaviour on multi-execution", None, "0, 1", allowed=(0, 1)),
+        ),
+        outputs=(
+            Var("InVelocity", "BOOL", False, "TRUE when the target velocity is reached"),
+            O_BUSY,
+            O_ACTIVE,
+            O_ABORTED,
+            O_ERROR,
+            O_ERRORID,
+        ),
+        spec="omron-axis-instructions.md MC_MoveVelocity (seed 000 line 4486)",
+        status="partial",
+        notes="Override arrives with the single-axis conformance issue.",
+    )
+    REEXECUTABLE = True
+
+    def _check(self) -> int:
+        i = self.inp
+        if not i["Velocity"] >= 0:
+            return E.E_VELOCITY
+        code = _check_acc_dec_jerk(i["Acceleration"], i["Deceleration"], i["Jerk"])
+        if code:
+            return code
+        if i["Direction"] not in (0, 2, 3):
+            return E.E_DIRECTION
+        if i["Continuous"]:
+            return 0x5433
+        if i["BufferMode"] not in (0, 1):
+            return E.E_BUFFER_MODE
+        return 0
+
+    def _signed_velocity(self, axis: Axis) -> float:
+        i = self.inp
+        d = i["Direction"]
+        if d == _eMC_DIRECTION._mcPositiveDirection:
+            sign = 1.0
+        elif d == _eMC_DIRECTION._mcNegativeDirection:
+            sign = -1.0
+        else:  # current direction: of the motion in progress, else of the last motion
+            v = float(axis.m.prof_vel[axis.i])
+            sign = 1.0 if v > 0 else -1.0 if v < 0 else float(axis.last_direction)
+        v, _, _ = _clamp_profile(axis, i["Velocity"], 0.0, 0.0)
+        return sign * v
+
+    def _fill(self, job: Job, axis: Axis) -> None:
+        i = self.inp
+        _, job.acceleration, job.deceleration = _clamp_profile(axis, 0.0, i["Acceleration"], i["Deceleration"])
+        job.jerk = i["Jerk"]
+        job.velocity = self._signed_velocity(axis)
+
+    def execute(self, axis: Axis) -> None:
+        verdict, code = axis.check_start()
+        if verdict == "abort":
+            self._finish("CommandAborted")
+            return
+        code = self._check() or code
+        if code:
+            self.fail(code, axis)
+            return
+        i = self.inp
+        job = Job(JobKind.VELOCITY, self, buffer_mode=i["BufferMode"], direction=i["Direction"])
+        job.info["latched"] = {k: i[k] for k in ("Jerk", "BufferMode", "Direction")}
+        self._fill(job, axis)
+        self._submit(axis, job, "ok", 0)
+
+    def reexecute(self, axis: Axis) -> None:
+        job = self.job
+        if job is None:
+            return
+        latched = job.info["latched"]
+        i = self.inp
+        for name, code in (("Jerk", E.E_REEXEC_JERK), ("BufferMode", E.E_REEXEC_BUFFER_MODE),
+                           ("Direction", E.E_REEXEC_DIRECTION)):
+            if i[name] != latched[name]:
+                self.fail(code, axis)
+                return
+        code = self._check()
+        if code:
+            self.fail(code, axis)
+            return
+        self._fill(job, axis)
+        self.out["InVelocity"] = False
+        axis.replan(job)
+
+
+# --------------------------------------------------------------------------------------------------- MC_MoveJog
+class MC_MoveJog(FunctionBlock):
+    DEF = FBDef(
+        name="MC_MoveJog",
+        title="Jog",
+        summary="Jogs at the target velocity while PositiveEnable or NegativeEnable is TRUE.",
+        kind="enable",
+        inouts=(IO_AXIS,),
+        inputs=(
+            Var("PositiveEnable", "BOOL", False, "TRUE: jog in + direction", dead_man=True),
+            Var("NegativeEnable", "BOOL", False, "TRUE: jog in − direction", dead_man=True),
+            Var("Velocity", "LREAL", 0.0, "Target velocity (clamped to Maximum Jog Velocity)", "unit/s",
+                "positive or 0"),
+            I_ACC,
+            I_DEC,
+        ),
+        outputs=(O_BUSY, O_ABORTED, O_ERROR, O_ERRORID),
+        spec="omron-axis-instructions.md MC_MoveJog (seed 000 line 2573)",
+    )
+
+    def __init__(self, mc: Any, fb_id: int, inputs: dict[str, Any] | None = None) -> None:
+        super().__init__(mc, fb_id, inputs)
+        self._prev = (False, False)
+        self._dir = 0  # +1 / −1 of the enable that owns the running jog
+        self._aborted_cycle = -1
+        self.job: Job | None = None
+        self.axis: Axis | None = None
+
+    def _check(self) -> int:
+        i = self.inp
+        if not i["Velocity"] >= 0:
+            return E.E_VELOCITY
+        return _check_acc_dec_jerk(i["Acceleration"], i["Deceleration"], 0.0)
+
+    def _velocity(self, axis: Axis, direction: int) -> float:
+        op = axis.params.Operation
+        return direction * min(self.inp["Velocity"], op.MaxJogVel, op.MaxVel)
+
+    def call(self) -> None:
+        o = self.out
+        pe, ne = bool(self.inp["PositiveEnable"]), bool(self.inp["NegativeEnable"])
+        pe_edge, ne_edge = pe and not self._prev[0], ne and not self._prev[1]
+        self._prev = (pe, ne)
+        if o["Error"] and self._error_released():
+            o["Error"] = False
+            o["ErrorID"] = 0
+        # CommandAborted: cleared with the enable going FALSE, or one period later if both were already FALSE
+        if o["CommandAborted"] and not (pe or ne) and self._aborted_cycle < self.mc.cycle:
+            o["CommandAborted"] = False
+        job = self.job
+        if job is not None and not job.running:
+            self.job = None
+            o["Busy"] = False
+            if job.status == JobStatus.ABORTED:
+                o["CommandAborted"] = True
+                self._aborted_cycle = self.mc.cycle
+            elif job.status == JobStatus.ERROR:
+                self._set_error(job.error_id, self.axis)
+        if o["Error"]:
+            return
+        want = 1 if pe_edge else -1 if ne_edge else 0
+        if want:
+            self._start(want)
+        elif self.job is not None and self.axis is not None:
+            held = pe if self._dir > 0 else ne
+            if not held:
+                self.axis.release_jog(self.job)
+
+    def _start(self, direction: int) -> None:
+        o = self.out
+        job = self.job
+        if job is not None and self.axis is not None:
+            # same instance, still busy: re-accelerate or reverse with the inputs latched now
+            code = self._check()
+            if code:
+                self._fail_running(code)
+                return
+            i = self.inp
+            job.velocity = self._velocity(self.axis, direction)
+            _, job.acceleration, job.deceleration = _clamp_profile(
+                self.axis, 0.0, i["Acceleration"], i["Deceleration"]
+            )
+            job.stopping = False
+            self._dir = direction
+            job.replan = True
+            self.axis.replan(job)
+            return
+        axis = self.resolve_axis()
+        self.axis = axis
+        if axis is None:
+            self.fail(E.E_ILLEGAL_AXIS, None)
+            return
+        o["CommandAborted"] = False
+        verdict, code = axis.check_start(jog=True)
+        if verdict == "abort":
+            o["CommandAborted"] = True
+            self._aborted_cycle = self.mc.cycle
+            return
+        code = self._check() or code
+        if code:
+            self.fail(code, axis)
+            return
+        i = self.inp
+        _, acc, dec = _clamp_profile(axis, 0.0, i["Acceleration"], i["Deceleration"])
+        job = Job(JobKind.JOG, self, velocity=self._velocity(axis, direction), acceleration=acc, deceleration=dec)
+        err = axis.submit(job)
+        if err:
+            self.fail(err, axis)
+            return
+        self.job = job
+        self._dir = direction
+        o["Busy"] = True
+
+    def _fail_running(self, code: int) -> None:
+        axis = self.axis
+        self.job = None
+        self.fail(code, axis)
+
+
+FB_CLASSES: tuple[type[FunctionBlock], ...] = (
+    MC_Power,
+    MC_Reset,
+    MC_Stop,
+    MC_MoveAbsolute,
+    MC_MoveRelative,
+    MC_MoveVelocity,
+    MC_MoveJog,
+)

@@ -1,0 +1,239 @@
+"""The MC function module: all axes, their arrays, and the inputs / motion / outputs stages of one period.
+
+Data layout (settled for the performance issue): every continuous per-axis quantity is a numpy array indexed by the
+axis row, so a period costs a fixed number of vector operations plus Python work only for axes with an event (a new
+instruction, a finished profile, a servo change). `Axis` objects hold the discrete state machine.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from . import errors as E
+from .axis import Axis
+from .jobs import JobKind, JobStatus
+from .profile import Planner, PlanningError, ProfileTable
+
+if TYPE_CHECKING:
+    from ...fieldbus.network import Network
+    from ...project.models import Project
+    from ..events import EventLog
+
+# DrvStatus bits (order of `_sAXIS_REF_STA_DRV`, omron-mc-basics.md §2.3)
+DRV_BITS = ("ServoOn", "Ready", "MainPower", "P_OT", "N_OT", "HomeSw", "Home", "ImdStop", "Latch1", "Latch2",
+            "DrvAlarm", "DrvWarning", "ILA", "CSP", "CSV", "CST")
+_B = {name: 1 << k for k, name in enumerate(DRV_BITS)}
+
+CW_SHUTDOWN, CW_SWITCH_ON, CW_ENABLE = 0x0006, 0x0007, 0x000F
+E_INTERNAL = 0xFFFF  # emulator-internal failure (never a manual code; see docs/decisions.md)
+
+
+class MotionModule:
+    def __init__(self, project: Project, *, period_s: float, events: EventLog, network: Network | None) -> None:
+        self.period_s = period_s
+        self.events = events
+        self.network = network
+        self.cycle = 0
+        used = [a for a in project.axes if a.use.name == "_mcUsedAxis"]
+        self.axes: list[Axis] = [Axis(self, i, cfg) for i, cfg in enumerate(used)]
+        self.by_name: dict[str, Axis] = {a.name: a for a in self.axes}
+        n = self.n = len(self.axes)
+        self.ppu = np.array([a.ppu for a in self.axes], dtype=float)
+        self.cmd_pos = np.zeros(n)
+        self.prof_vel = np.zeros(n)  # analytic profile velocity/acceleration: the state a re-plan starts from
+        self.prof_acc = np.zeros(n)
+        self.cmd_vel = np.zeros(n)  # Cmd.Vel: difference of command positions (manual §2.3)
+        self.cmd_accdec = np.zeros(n)
+        self.cmd_jerk = np.zeros(n)
+        self.prev_cmd_pos = np.zeros(n)
+        self.act_pos = np.zeros(n)
+        self.act_vel = np.zeros(n)
+        self.act_count = np.zeros(n, dtype=np.int64)
+        self.servo_on = np.zeros(n, dtype=bool)
+        self.servo_req = np.zeros(n, dtype=bool)
+        self.state = np.zeros(n, dtype=np.int8)
+        self.drv = np.zeros(n, dtype=np.uint32)
+        self.step_accdec = np.zeros(n, dtype=bool)  # running instruction has acc/dec 0 → Cmd.AccDec/Jerk read 0
+        self.notify = np.zeros(n, dtype=bool)  # profile end not yet reported to the axis
+        self.override = np.ones(n)
+        self.profiles = ProfileTable(n)
+        self.planner = Planner(period_s)
+        self._scheduled: dict[int, Axis] = {}
+        # bus mapping: axes with a slave on the network
+        rows, slaves = [], []
+        if network is not None:
+            for a in self.axes:
+                addr = a.config.node_address
+                if addr is not None and addr in network.index_of_node and not a.virtual:
+                    rows.append(a.i)
+                    slaves.append(network.index_of_node[addr])
+        self.bus_rows = np.array(rows, dtype=np.intp)
+        self.bus_slaves = np.array(slaves, dtype=np.intp)
+        self.virtual_rows = np.array([a.i for a in self.axes if a.i not in set(rows)], dtype=np.intp)
+        self._prev_pos32 = np.zeros(len(rows), dtype=np.int64)
+        if network is not None and len(rows):
+            self._prev_pos32[:] = network.tx["position_actual"][self.bus_slaves]
+            self.act_count[self.bus_rows] = self._prev_pos32
+            self.act_pos[self.bus_rows] = self.act_count[self.bus_rows] / self.ppu[self.bus_rows]
+            self.cmd_pos[:] = self.act_pos
+            self.prev_cmd_pos[:] = self.act_pos
+
+    # ------------------------------------------------------------------ helpers for axes
+    def schedule(self, axis: Axis) -> None:
+        self._scheduled[axis.i] = axis
+
+    def log_error(self, code: int, *, axis: Axis | None, source: str | None, detail: str = "") -> None:
+        d = E.describe(code)
+        where = axis.name if axis else "MC common"
+        self.events.add(
+            cycle=self.cycle,
+            time_s=self.cycle * self.period_s,
+            source=f"{where} / {source}" if source else where,
+            code=f"{code:04X}0000",
+            level=d.level if d else "minor fault",  # type: ignore[arg-type]
+            message=d.name if d else ("Emulator internal error" if code == E_INTERNAL else f"Error {code:04X}"),
+            cause=d.cause if d else "",
+            correction=d.correction if d else "",
+            detail=detail,
+        )
+
+    def log_info(self, axis: Axis | None, message: str) -> None:
+        self.events.add(cycle=self.cycle, time_s=self.cycle * self.period_s, source=axis.name if axis else "MC",
+                        code="00000000", level="information", message=message)
+
+    # ------------------------------------------------------------------ stage 2: inputs
+    def inputs(self) -> None:
+        T = self.period_s
+        prev_on = self.servo_on.copy()
+        if self.bus_rows.size:
+            tx = self.network.tx  # type: ignore[union-attr]
+            rows, sl = self.bus_rows, self.bus_slaves
+            sw = tx["statusword"][sl].astype(np.uint32)
+            pos32 = tx["position_actual"][sl].astype(np.int64)
+            delta = (pos32 - self._prev_pos32 + 2**31) % 2**32 - 2**31
+            self._prev_pos32 = pos32
+            self.act_count[rows] += delta
+            new_act = self.act_count[rows] / self.ppu[rows]
+            self.act_vel[rows] = (new_act - self.act_pos[rows]) / T
+            self.act_pos[rows] = new_act
+            oe = (sw & 0x6F) == 0x27
+            fault = (sw & 0x4F) == 0x08
+            mode = tx["modes_display"][sl]
+            drv = np.zeros(rows.size, dtype=np.uint32)
+            drv |= np.where(oe, _B["ServoOn"], 0).astype(np.uint32)
+            drv |= np.where(~fault & ((sw & 0x4F) != 0), _B["Ready"], 0).astype(np.uint32)
+            drv |= np.where((sw & 0x10) != 0, _B["MainPower"], 0).astype(np.uint32)
+            drv |= np.where(fault, _B["DrvAlarm"], 0).astype(np.uint32)
+            drv |= np.where((sw & 0x80) != 0, _B["DrvWarning"], 0).astype(np.uint32)
+            drv |= np.where((sw & 0x800) != 0, _B["ILA"], 0).astype(np.uint32)
+            drv |= np.where(oe & (mode == 8), _B["CSP"], 0).astype(np.uint32)
+            drv |= np.where(oe & (mode == 9), _B["CSV"], 0).astype(np.uint32)
+            drv |= np.where(oe & (mode == 10), _B["CST"], 0).astype(np.uint32)
+            self.drv[rows] = drv
+            self.servo_on[rows] = oe
+        if self.virtual_rows.size:
+            v = self.virtual_rows
+            self.servo_on[v] = self.servo_req[v]
+            self.drv[v] = np.where(self.servo_on[v], _B["ServoOn"] | _B["CSP"], 0) | _B["Ready"] | _B["MainPower"]
+        for i in np.flatnonzero(self.servo_on != prev_on):
+            self.axes[i].on_servo_changed(bool(self.servo_on[i]))
+        # Servo OFF: the command position reads the actual position (manual §2.3, Cmd.Pos).
+        off = ~self.servo_on
+        if off.any():
+            self.cmd_pos[off] = self.act_pos[off]
+
+    # ------------------------------------------------------------------ stage 4: motion
+    def motion(self) -> None:
+        T = self.period_s
+        cycle = self.cycle
+        if self._scheduled:
+            scheduled, self._scheduled = self._scheduled, {}
+            for i, axis in scheduled.items():
+                self._plan(i, axis)
+        active = self.profiles.active
+        if active.any():
+            idx = np.flatnonzero(active)
+            pos, vel, acc, fin = self.profiles.evaluate(cycle, T, idx)
+            self.cmd_pos[idx] = pos
+            self.prof_vel[idx] = vel
+            self.prof_acc[idx] = acc
+            report = idx[fin & self.notify[idx]]
+            for i in report:
+                axis = self.axes[i]
+                job = axis.current
+                if job is None:
+                    self.notify[i] = False
+                    continue
+                axis.on_profile_finished(job)
+                # keep reporting only while something still waits on the end (in-position check)
+                self.notify[i] = axis.in_pos_waiting
+        # derived command values (manual §2.3: differences of command positions / velocities)
+        vel = (self.cmd_pos - self.prev_cmd_pos) / T
+        accdec = (np.abs(vel) - np.abs(self.cmd_vel)) / T
+        jerk = (np.abs(accdec) - np.abs(self.cmd_accdec)) / T
+        if self.step_accdec.any():
+            accdec[self.step_accdec] = 0.0
+            jerk[self.step_accdec] = 0.0
+        self.cmd_jerk = jerk
+        self.cmd_accdec = accdec
+        self.cmd_vel = vel
+        self.prev_cmd_pos[:] = self.cmd_pos
+
+    def _plan(self, i: int, axis: Axis) -> None:
+        job = axis.current
+        if job is None or not job.running:
+            return
+        if job.status != JobStatus.STARTING and not job.replan and job.kind != JobKind.ERROR_STOP:
+            return
+        p0, v0, a0 = float(self.cmd_pos[i]), float(self.prof_vel[i]), float(self.prof_acc[i])
+        if job.kind == JobKind.POSITION and job.relative and job.origin is None:
+            job.origin = p0
+            job.target = p0 + job.distance
+        try:
+            seg = job.plan(self.planner, p0, v0, a0, float(self.override[i]))
+        except PlanningError as err:
+            axis.raise_error(E_INTERNAL, source="profile planner", detail=str(err))
+            return
+        self.profiles.load(i, seg, self.cycle)
+        self.notify[i] = True
+        self.step_accdec[i] = job.kind != JobKind.ERROR_STOP and (job.acceleration == 0 or job.deceleration == 0)
+        axis.on_planned(job)
+
+    # ------------------------------------------------------------------ stage 5: outputs
+    def outputs(self) -> None:
+        if self.bus_rows.size:
+            rx = self.network.rx  # type: ignore[union-attr]
+            rows, sl = self.bus_rows, self.bus_slaves
+            count = np.rint(self.cmd_pos[rows] * self.ppu[rows]).astype(np.int64)
+            rx["target_position"][sl] = count.astype(np.int32)
+            sw = self.network.tx["statusword"][sl].astype(np.uint32)  # type: ignore[union-attr]
+            req = self.servo_req[rows]
+            cw = np.full(rows.size, CW_SHUTDOWN, dtype=np.uint16)
+            cw[req & ((sw & 0x6F) == 0x21)] = CW_SWITCH_ON
+            cw[req & (((sw & 0x6F) == 0x23) | ((sw & 0x6F) == 0x27))] = CW_ENABLE
+            rx["controlword"][sl] = cw
+            rx["modes_of_operation"][sl] = 8
+        if self.virtual_rows.size:
+            v = self.virtual_rows
+            on = self.servo_on[v]
+            self.act_vel[v] = np.where(on, self.cmd_vel[v], 0.0)
+            self.act_pos[v] = self.cmd_pos[v]
+
+    # ------------------------------------------------------------------ snapshot
+    def capture(self) -> dict[str, Any]:
+        return {
+            "cmd_pos": self.cmd_pos.copy(),
+            "cmd_vel": self.cmd_vel.copy(),
+            "cmd_accdec": self.cmd_accdec.copy(),
+            "cmd_jerk": self.cmd_jerk.copy(),
+            "act_pos": self.act_pos.copy(),
+            "act_vel": self.act_vel.copy(),
+            "drv": self.drv.copy(),
+            "discrete": tuple(a.capture() for a in self.axes),
+        }
+
+
+def drv_status(bits: int) -> dict[str, bool]:
+    return {name: bool(bits & (1 << k)) for k, name in enumerate(DRV_BITS)}

@@ -1,0 +1,258 @@
+"""Motion profiles: planned once with ruckig, evaluated every period as piecewise constant-jerk segments.
+
+A move is planned when it starts or changes (re-execution, override, blending), never per period. ruckig's result is
+converted into a small table of segments `(t_start, p0, v0, a0, j)`; the last segment is an open-ended tail at the
+final velocity, so a velocity move keeps going and a position move holds its target. Evaluating the table is plain
+polynomial arithmetic, which `ProfileTable.evaluate` does for all axes at once with numpy.
+
+Conventions (architecture.md "Profile generation"): Jerk = 0 is the manual's trapezoid (ruckig with infinite jerk);
+Acceleration or Deceleration = 0 is the manual's step change, realised as reaching the new velocity within one period.
+Tolerances: a finished position profile ends exactly on its target (the tail holds the commanded target, not a
+polynomial value); inputs are sanitised so that residual velocities below 1e-9 unit/s count as zero.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from ruckig import ControlInterface, InputParameter, Result, Ruckig, Trajectory
+
+MAX_SEGMENTS = 24  # brake (2) + 7 per ruckig stage, two stages for a reversal, plus the tail
+_TINY = 1e-9
+
+
+class PlanningError(Exception):
+    """ruckig refused the inputs; `result` is its Result value."""
+
+    def __init__(self, result: Result, detail: str) -> None:
+        super().__init__(f"profile planning failed ({result.name}): {detail}")
+        self.result = result
+
+
+@dataclass(slots=True)
+class Segments:
+    """Piecewise constant-jerk description of a profile, relative to its own start (t = 0)."""
+
+    t: list[float]  # start time of each segment
+    p: list[float]
+    v: list[float]
+    a: list[float]
+    j: list[float]
+    duration: float  # time at which the tail (constant velocity, a = 0) begins
+    end_position: float
+    end_velocity: float
+
+    def sample(self, t: float) -> tuple[float, float, float]:
+        """Scalar evaluation (for tests and planning); the kernel uses ProfileTable.evaluate."""
+        k = max(i for i, ts in enumerate(self.t) if t >= ts) if t >= 0 else 0
+        tau = t - self.t[k]
+        j, a, v = self.j[k], self.a[k], self.v[k]
+        return (
+            self.p[k] + tau * (v + tau * (a / 2 + tau * j / 6)),
+            v + tau * (a + tau * j / 2),
+            a + tau * j,
+        )
+
+
+def _clean(x: float) -> float:
+    return 0.0 if abs(x) < _TINY else x
+
+
+class Planner:
+    """Plans single-axis moves with ruckig. One instance per controller; not thread-safe (kernel thread only)."""
+
+    def __init__(self, period_s: float) -> None:
+        self.period_s = period_s
+        self._otg = Ruckig(1)
+        self._inp = InputParameter(1)
+        self._traj = Trajectory(1)
+
+    def _step_limit(self, speed: float) -> float:
+        # The manual's "0 = step change": reach the new velocity within one period.
+        return max(abs(speed), 1.0) / self.period_s
+
+    def _run(self, *, p0: float, v0: float, a0: float, target_p: float | None, target_v: float,
+             vmax: float, acc: float, dec: float, jerk: float, forward: bool) -> Segments:
+        inp = self._inp
+        inp.current_position = [p0]
+        inp.current_velocity = [v0]
+        inp.current_acceleration = [a0]
+        # ruckig bounds the signed acceleration; map Omron's acceleration/deceleration to the bounds in the direction
+        # of travel: moving forward, speeding up is +a (Acceleration), slowing down is −a (Deceleration).
+        up, down = (acc, dec) if forward else (dec, acc)
+        inp.max_acceleration = [up]
+        inp.min_acceleration = [-down]
+        inp.max_jerk = [jerk if jerk > 0 else math.inf]
+        if target_p is None:
+            inp.control_interface = ControlInterface.Velocity
+            inp.target_position = [p0]
+            inp.target_velocity = [target_v]
+            inp.target_acceleration = [0.0]
+            inp.max_velocity = [max(abs(target_v), abs(v0), 1.0)]
+        else:
+            inp.control_interface = ControlInterface.Position
+            inp.target_position = [target_p]
+            inp.target_velocity = [0.0]
+            inp.target_acceleration = [0.0]
+            inp.max_velocity = [vmax]
+        result = self._otg.calculate(inp, self._traj)
+        if result not in (Result.Working, Result.Finished):
+            raise PlanningError(result, f"p0={p0} v0={v0} a0={a0} target={target_p} v={target_v} vmax={vmax}")
+        return _segments_from_trajectory(self._traj, target_p=target_p)
+
+    def position(self, *, p0: float, v0: float, a0: float, target: float, velocity: float,
+                 acceleration: float, deceleration: float, jerk: float) -> Segments:
+        """Point-to-point move to `target`; if the axis moves away from it, decelerate to a stop first, then reverse
+        (Operation Selection at Reversing = deceleration stop)."""
+        v0, a0 = _clean(v0), _clean(a0)
+        vmax = abs(velocity)
+        acc = acceleration if acceleration > 0 else self._step_limit(vmax)
+        dec = deceleration if deceleration > 0 else self._step_limit(max(vmax, abs(v0)))
+        forward = target >= p0
+        moving_away = (v0 > 0 and not forward) or (v0 < 0 and forward)
+        if moving_away:
+            stop = self._run(p0=p0, v0=v0, a0=a0, target_p=None, target_v=0.0, vmax=vmax,
+                             acc=acc, dec=dec, jerk=jerk, forward=v0 > 0)
+            rest = self._run(p0=stop.end_position, v0=0.0, a0=0.0, target_p=target, target_v=0.0, vmax=vmax,
+                             acc=acc, dec=dec, jerk=jerk, forward=target >= stop.end_position)
+            return concat(stop, rest)
+        return self._run(p0=p0, v0=v0, a0=a0, target_p=target, target_v=0.0, vmax=vmax,
+                         acc=acc, dec=dec, jerk=jerk, forward=forward)
+
+    def velocity(self, *, p0: float, v0: float, a0: float, target_velocity: float,
+                 acceleration: float, deceleration: float, jerk: float) -> Segments:
+        """Reach `target_velocity` (signed) and keep it. A sign change decelerates to 0 with Deceleration first."""
+        v0, a0 = _clean(v0), _clean(a0)
+        acc = acceleration if acceleration > 0 else self._step_limit(target_velocity)
+        dec = deceleration if deceleration > 0 else self._step_limit(max(abs(v0), abs(target_velocity)))
+        if v0 * target_velocity < 0:
+            stop = self._run(p0=p0, v0=v0, a0=a0, target_p=None, target_v=0.0, vmax=abs(v0),
+                             acc=acc, dec=dec, jerk=jerk, forward=v0 > 0)
+            rest = self._run(p0=stop.end_position, v0=0.0, a0=0.0, target_p=None, target_v=target_velocity,
+                             vmax=abs(target_velocity), acc=acc, dec=dec, jerk=jerk, forward=target_velocity > 0)
+            return concat(stop, rest)
+        forward = target_velocity > 0 or (target_velocity == 0 and v0 > 0)
+        return self._run(p0=p0, v0=v0, a0=a0, target_p=None, target_v=target_velocity, vmax=abs(target_velocity),
+                         acc=acc, dec=dec, jerk=jerk, forward=forward)
+
+    def stop(self, *, p0: float, v0: float, a0: float, deceleration: float, jerk: float) -> Segments:
+        """Decelerate to standstill (MC_Stop); Deceleration = 0 stops immediately."""
+        v0, a0 = _clean(v0), _clean(a0)
+        if deceleration <= 0 or (v0 == 0 and a0 == 0):
+            return hold(p0)
+        return self._run(p0=p0, v0=v0, a0=a0, target_p=None, target_v=0.0, vmax=abs(v0),
+                         acc=deceleration, dec=deceleration, jerk=jerk, forward=v0 > 0)
+
+
+def hold(position: float) -> Segments:
+    return Segments([0.0], [position], [0.0], [0.0], [0.0], 0.0, position, 0.0)
+
+
+def _segments_from_trajectory(traj: Trajectory, *, target_p: float | None) -> Segments:
+    prof = traj.profiles[0][0]
+    ts: list[float] = []
+    ps: list[float] = []
+    vs: list[float] = []
+    as_: list[float] = []
+    js: list[float] = []
+    t = 0.0
+    brake = prof.brake
+    if brake.duration > 0:
+        for k in range(2):
+            if brake.t[k] > 0:
+                ts.append(t)
+                ps.append(brake.p[k])
+                vs.append(brake.v[k])
+                as_.append(brake.a[k])
+                js.append(brake.j[k])
+                t += brake.t[k]
+    for k in range(7):
+        if prof.t[k] > 0:
+            ts.append(t)
+            ps.append(prof.p[k])
+            vs.append(prof.v[k])
+            as_.append(prof.a[k])
+            js.append(prof.j[k])
+            t += prof.t[k]
+    duration = traj.duration
+    end_p = prof.p[7] if target_p is None else target_p
+    end_v = prof.v[7]
+    end_v = 0.0 if abs(end_v) < _TINY else end_v
+    # tail: hold the final velocity for ever (exact target for position moves)
+    ts.append(duration)
+    ps.append(end_p)
+    vs.append(end_v)
+    as_.append(0.0)
+    js.append(0.0)
+    return Segments(ts, ps, vs, as_, js, duration, end_p, end_v)
+
+
+def concat(first: Segments, second: Segments) -> Segments:
+    """`second` starts when `first` reaches its tail."""
+    off = first.duration
+    n = len(first.t) - 1  # drop first's tail
+    return Segments(
+        first.t[:n] + [off + t for t in second.t],
+        first.p[:n] + second.p,
+        first.v[:n] + second.v,
+        first.a[:n] + second.a,
+        first.j[:n] + second.j,
+        off + second.duration,
+        second.end_position,
+        second.end_velocity,
+    )
+
+
+class ProfileTable:
+    """Segment tables of all axes in arrays of shape (n_axes, MAX_SEGMENTS), evaluated together each period."""
+
+    def __init__(self, n: int) -> None:
+        self.n = n
+        self.t = np.full((n, MAX_SEGMENTS), np.inf)
+        self.p = np.zeros((n, MAX_SEGMENTS))
+        self.v = np.zeros((n, MAX_SEGMENTS))
+        self.a = np.zeros((n, MAX_SEGMENTS))
+        self.j = np.zeros((n, MAX_SEGMENTS))
+        self.duration = np.zeros(n)
+        self.start_cycle = np.zeros(n, dtype=np.int64)
+        self.active = np.zeros(n, dtype=bool)
+
+    def load(self, i: int, seg: Segments, start_cycle: int) -> None:
+        m = len(seg.t)
+        if m > MAX_SEGMENTS:
+            raise PlanningError(Result.Error, f"profile has {m} segments (max {MAX_SEGMENTS})")
+        self.t[i, :m] = seg.t
+        self.t[i, m:] = np.inf
+        self.p[i, :m] = seg.p
+        self.v[i, :m] = seg.v
+        self.a[i, :m] = seg.a
+        self.j[i, :m] = seg.j
+        self.duration[i] = seg.duration
+        self.start_cycle[i] = start_cycle
+        self.active[i] = True
+
+    def clear(self, i: int) -> None:
+        self.active[i] = False
+
+    def evaluate(self, cycle: int, period_s: float, idx: np.ndarray) -> tuple[np.ndarray, ...]:
+        """Position, velocity, acceleration and 'finished' flags of the axes in `idx` at the end of `cycle`.
+
+        A profile loaded at cycle c0 has advanced one period at the end of c0 (the instruction's first command value
+        appears in the period in which it was accepted; its Active output follows one period later).
+        """
+        t = (cycle - self.start_cycle[idx] + 1) * period_s
+        ts = self.t[idx]
+        k = np.count_nonzero(ts <= t[:, None], axis=1) - 1
+        np.maximum(k, 0, out=k)
+        tau = t - self.t[idx, k]
+        j = self.j[idx, k]
+        a = self.a[idx, k]
+        v = self.v[idx, k]
+        p = self.p[idx, k]
+        pos = p + tau * (v + tau * (a * 0.5 + tau * j * (1.0 / 6.0)))
+        vel = v + tau * (a + tau * j * 0.5)
+        acc = a + tau * j
+        finished = t >= self.duration[idx]
+        return pos, vel, acc, finished

@@ -1,0 +1,218 @@
+"""Runner: the thread that owns the controller and decides *when* the next cycle is computed.
+
+Modes (architecture.md): `realtime` paces cycles to the wall clock and counts overruns, `fast` computes cycles as fast
+as possible, `paused` only advances on explicit steps. Every request from another thread (API, WebSocket) is a
+callable queued with `call()` and executed by this thread between two cycles, so kernel state is never touched
+concurrently; readers use the published immutable snapshot.
+
+Realtime pacing: cycle k is due at t0 + k·T. A cycle that completes after its own deadline t0 + (k+1)·T is an overrun.
+If the runner falls more than `MAX_LAG_PERIODS` behind (machine suspended, debugger), it re-anchors t0 instead of
+racing to catch up, and counts the skipped periods as overruns.
+"""
+
+from __future__ import annotations
+
+import logging
+import sys
+import threading
+import time
+from collections import deque
+from collections.abc import Callable
+from concurrent.futures import Future
+from dataclasses import dataclass
+from typing import Literal, TypeVar
+
+from .kernel import Controller, Snapshot
+
+Mode = Literal["realtime", "fast", "paused"]
+MODES: tuple[Mode, ...] = ("realtime", "fast", "paused")
+T = TypeVar("T")
+log = logging.getLogger(__name__)
+
+MAX_LAG_PERIODS = 50
+FAST_SLICE_S = 0.004  # fast mode: run cycles for this long, then serve requests and publish
+PUBLISH_INTERVAL_S = 1 / 120  # snapshots in running modes at most this often (and after every request)
+RTF_WINDOW_S = 0.5
+
+
+@dataclass(frozen=True)
+class RunnerStatus:
+    mode: Mode
+    rtf: float
+    overruns: int
+
+
+class Runner:
+    def __init__(self, controller: Controller, mode: Mode = "realtime") -> None:
+        self._controller = controller
+        self._mode: Mode = mode
+        self._queue: deque[tuple[Callable[[Controller], object], Future[object]]] = deque()
+        self._wake = threading.Condition()
+        self._stop = False
+        self._thread: threading.Thread | None = None
+        self.overruns = 0
+        self.rtf = 0.0
+        self._rt_anchor: tuple[float, int] | None = None
+        self._rtf_mark: tuple[float, float] = (time.perf_counter(), controller.time_s)
+        self._last_publish = 0.0
+        self._listeners: list[Callable[[Controller], None]] = []
+
+    # ------------------------------------------------------------------ public (any thread)
+    @property
+    def controller(self) -> Controller:
+        return self._controller
+
+    @property
+    def snapshot(self) -> Snapshot:
+        return self._controller.snapshot
+
+    @property
+    def mode(self) -> Mode:
+        return self._mode
+
+    def status(self) -> RunnerStatus:
+        return RunnerStatus(self._mode, self.rtf if self._mode != "paused" else 0.0, self.overruns)
+
+    def start(self) -> None:
+        # Python switches threads every 5 ms by default; the kernel thread must get the GIL back within a period.
+        if sys.getswitchinterval() > 0.0005:
+            sys.setswitchinterval(0.0005)
+        self._thread = threading.Thread(target=self._loop, name="mcstudio-kernel", daemon=True)
+        self._thread.start()
+
+    def stop(self) -> None:
+        with self._wake:
+            self._stop = True
+            self._wake.notify_all()
+        if self._thread is not None:
+            self._thread.join(timeout=5)
+
+    def call(self, fn: Callable[[Controller], T], timeout: float | None = 30.0) -> T:
+        """Run `fn(controller)` in the kernel thread at the next cycle boundary and return its result."""
+        if self._thread is None or threading.current_thread() is self._thread:
+            result = fn(self._controller)
+            self._controller.publish()
+            return result
+        fut: Future[object] = Future()
+        with self._wake:
+            self._queue.append((fn, fut))
+            self._wake.notify_all()
+        return fut.result(timeout=timeout)  # type: ignore[return-value]
+
+    def set_mode(self, mode: Mode) -> None:
+        def apply(_: Controller) -> None:
+            if mode != self._mode:
+                self._mode = mode
+                self._rt_anchor = None
+                self._rtf_mark = (time.perf_counter(), self._controller.time_s)
+
+        self.call(apply)
+
+    def replace_controller(self, controller: Controller) -> None:
+        def apply(_: Controller) -> None:
+            self._controller = controller
+            self._rt_anchor = None
+            self.overruns = 0
+            self._rtf_mark = (time.perf_counter(), controller.time_s)
+            controller.publish()
+
+        self.call(apply)
+
+    def add_listener(self, fn: Callable[[Controller], None]) -> None:
+        """`fn(controller)` runs in the kernel thread after each publication (e.g. the 3D view)."""
+        self._listeners.append(fn)
+
+    # ------------------------------------------------------------------ kernel thread
+    def _serve_requests(self) -> bool:
+        served = False
+        while True:
+            with self._wake:
+                if not self._queue:
+                    break
+                fn, fut = self._queue.popleft()
+            served = True
+            if fut.set_running_or_notify_cancel():
+                try:
+                    fut.set_result(fn(self._controller))
+                except BaseException as exc:  # the caller gets the exception; the loop carries on
+                    fut.set_exception(exc)
+        if served:
+            self._publish(force=True)
+        return served
+
+    def _publish(self, *, force: bool = False) -> None:
+        now = time.perf_counter()
+        if not force and now - self._last_publish < PUBLISH_INTERVAL_S:
+            return
+        self._last_publish = now
+        ctrl = self._controller
+        ctrl.publish()
+        for fn in self._listeners:
+            try:
+                fn(ctrl)
+            except Exception:  # a listener (3D view) must never stop the kernel
+                log.exception("snapshot listener failed")
+
+    def _update_rtf(self) -> None:
+        now = time.perf_counter()
+        t0, sim0 = self._rtf_mark
+        if now - t0 >= RTF_WINDOW_S:
+            sim = self._controller.time_s
+            self.rtf = (sim - sim0) / (now - t0)
+            self._rtf_mark = (now, sim)
+
+    def _loop(self) -> None:
+        while True:
+            with self._wake:
+                if self._stop:
+                    return
+            self._serve_requests()
+            mode = self._mode
+            ctrl = self._controller
+            try:
+                if mode == "paused":
+                    self.rtf = 0.0
+                    self._rtf_mark = (time.perf_counter(), ctrl.time_s)
+                    with self._wake:
+                        if not self._queue and not self._stop:
+                            self._wake.wait(timeout=0.1)
+                elif mode == "fast":
+                    end = time.perf_counter() + FAST_SLICE_S
+                    while time.perf_counter() < end:
+                        ctrl.check_leases()
+                        ctrl.run_cycle()
+                    self._publish()
+                    self._update_rtf()
+                else:
+                    self._realtime_cycle(ctrl)
+            except Exception:
+                # A bug in the kernel must not kill the studio: log it, pause, and keep serving requests.
+                log.exception("kernel cycle failed; controller paused")
+                ctrl.events.add(cycle=ctrl.cycle, time_s=ctrl.time_s, source="controller", code="00000000",
+                                level="major fault", message="internal error in the control period; paused")
+                self._mode = "paused"
+
+    def _realtime_cycle(self, ctrl: Controller) -> None:
+        period = ctrl.period_s
+        if self._rt_anchor is None:
+            self._rt_anchor = (time.perf_counter(), ctrl.cycle)
+        t0, c0 = self._rt_anchor
+        due = t0 + (ctrl.cycle - c0) * period
+        now = time.perf_counter()
+        if now < due:
+            with self._wake:
+                if not self._queue and not self._stop:
+                    self._wake.wait(timeout=due - now)
+            return
+        lag = (now - due) / period
+        if lag > MAX_LAG_PERIODS:
+            skipped = int(lag)
+            self.overruns += skipped
+            self._rt_anchor = (now, ctrl.cycle)
+            due = now
+        ctrl.check_leases()
+        ctrl.run_cycle()
+        if time.perf_counter() > due + period:
+            self.overruns += 1
+        self._publish()
+        self._update_rtf()

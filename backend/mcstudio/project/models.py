@@ -1,0 +1,222 @@
+"""Project format v1: pydantic models of the project document (`project.json`).
+
+The axis parameters are laid out exactly as `_sAXIS_PARAM` (`omron-group-and-cam.md` §5.5): groups
+`UnitConversion`, `Operation`, `OtherOperation`, `Limit`, `PosCount`, `Homing` with the manual's member names, units
+and ranges. Defaults are the typical Sysmac Studio values listed in §5.5 (the manual itself gives none).
+Cross-field rules (error 573B consistency checks) live in `mcstudio.project.checks`.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import Literal
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator
+
+from ..controller.mc.enums import (
+    _eMC_ACCDECOVER,
+    _eMC_AXIS_TYPE,
+    _eMC_AXIS_USE,
+    _eMC_COUNT_MODE,
+    _eMC_DIRECTION,
+    _eMC_HOME_INPUT,
+    _eMC_HOMING_MODE,
+    _eMC_LIMIT_REVERSE_MODE,
+    _eMC_REVERSE_MODE,
+    _eMC_STOP_MODE,
+    _eMC_SWLMT_MODE,
+    _eMC_UNITS,
+)
+from .enumtypes import ManualEnum
+
+SCHEMA_VERSION = 1
+PROJECT_FILE = "project.json"
+
+UDINT_MAX = 4_294_967_295
+LREAL_MAX = 1.7976931348623157e308
+
+# Primary periods an NJ/NX controller offers (µs). NX701 goes down to 125 µs, NJ to 500 µs.
+PRIMARY_PERIODS_US = (125, 250, 500, 1000, 2000, 4000, 8000)
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", validate_assignment=True, allow_inf_nan=False)
+
+
+class UnitConversionSettings(_Strict):
+    """`_sAXIS_UNIT_CONVERSION_SETTINGS` — command unit ↔ pulse (electronic gear)."""
+
+    UnitDisplay: ManualEnum(_eMC_UNITS) = Field(_eMC_UNITS._mcPls, description="Unit of display (command unit)")
+    CmdPlsCountPerMotorRotation: int = Field(
+        8192, ge=1, le=UDINT_MAX, description="Command pulse count per motor rotation [pulse/rev]"
+    )
+    WorkTravelDistancePerMotorRotation: float = Field(
+        10000.0, ge=0.000000001, le=4294967295.0, description="Work travel distance per motor rotation [unit/rev]"
+    )
+    ReducerUse: bool = Field(False, description="Use the reducer (gear ratio) settings below")
+    WorkTravelDistancePerWorkSideRotation: float = Field(
+        10000.0, gt=0, le=LREAL_MAX, description="Work travel distance per work-side rotation [unit]"
+    )
+    WorkSideGearRatio: int = Field(1, ge=1, le=UDINT_MAX, description="Work-side gear ratio")
+    MotorSideGearRatio: int = Field(1, ge=1, le=UDINT_MAX, description="Motor-side gear ratio")
+
+
+class OperationSettings(_Strict):
+    """`_sAXIS_OPERATION_SETTINGS` — velocity/acceleration limits, in-position check."""
+
+    MaxVel: float = Field(400000000.0, gt=0, description="Maximum velocity [unit/s]")
+    StartVel: float = Field(0.0, ge=0, description="Start velocity [unit/s]")
+    MaxJogVel: float = Field(1000000.0, gt=0, description="Maximum jog velocity [unit/s]")
+    MaxAcc: float = Field(0.0, ge=0, description="Maximum acceleration [unit/s²]; 0 = no limit")
+    MaxDec: float = Field(0.0, ge=0, description="Maximum deceleration [unit/s²]; 0 = no limit")
+    AccDecOver: ManualEnum(_eMC_ACCDECOVER) = Field(
+        _eMC_ACCDECOVER._mcAccDecOverBuffer, description="Acceleration/deceleration over"
+    )
+    ReverseMode: ManualEnum(_eMC_REVERSE_MODE) = Field(
+        _eMC_REVERSE_MODE._mcReverseModeDecelerationStop, description="Operation selection at reversing"
+    )
+    VelWarningVal: int = Field(0, ge=0, le=100, description="Velocity warning value [% of MaxVel]; 0 = none")
+    AccWarningVal: int = Field(0, ge=0, le=100, description="Acceleration warning value [% of MaxAcc]; 0 = none")
+    DecWarningVal: int = Field(0, ge=0, le=100, description="Deceleration warning value [% of MaxDec]; 0 = none")
+    PosiTrqWarningVal: int = Field(0, ge=0, le=1000, description="Positive torque warning value [%]; 0 = none")
+    NegaTrqWarningVal: int = Field(0, ge=0, le=1000, description="Negative torque warning value [%]; 0 = none")
+    InPosRange: float = Field(10.0, ge=0, description="In-position range [unit]")
+    InPosCheckTime: int = Field(
+        0, ge=0, le=10000, description="In-position check time [ms]; 0 = no in-position check except homing"
+    )
+    ActVelFilterTimeConstant: int = Field(
+        0, ge=0, le=100, description="Actual velocity filter time constant [ms]; 0 = none"
+    )
+    ZeroPosRange: float = Field(10.0, ge=0, description="Zero position range [unit]")
+
+
+class OtherOperationSettings(_Strict):
+    """`_sAXIS_OTHER_OPERATION_SETTINGS` — stop methods, torque limits, input logic."""
+
+    ImmediateStopInputStopMode: ManualEnum(_eMC_STOP_MODE, (1, 2, 3)) = Field(
+        _eMC_STOP_MODE._mcImmediateStop, description="Immediate stop input stop method"
+    )
+    LimitInputStopMode: ManualEnum(_eMC_STOP_MODE, (0, 1, 2, 3)) = Field(
+        _eMC_STOP_MODE._mcImmediateStop, description="Limit input stop method"
+    )
+    DriveErrorResetMonitoringTime: int = Field(
+        200, ge=1, le=1000, description="Drive error reset monitoring time [ms]"
+    )
+    MaxPosiTrqLimit: float = Field(300.0, ge=0.0, le=1000.0, description="Maximum positive torque limit [%]")
+    MaxNegaTrqLimit: float = Field(300.0, ge=0.0, le=1000.0, description="Maximum negative torque limit [%]")
+    ImmediateStopInputLogicInversion: bool = False
+    PosiLimitInputLogicInversion: bool = False
+    NegaLimitInputLogicInversion: bool = False
+    HomeProximityInputLogicInversion: bool = False
+
+
+class LimitSettings(_Strict):
+    """`_sAXIS_LIMIT_SETTINGS` — software limits and following error."""
+
+    SwLimitMode: ManualEnum(_eMC_SWLMT_MODE) = Field(
+        _eMC_SWLMT_MODE._mcNonSwLmt, description="Software limit function"
+    )
+    PosiSwLimit: float = Field(2147483647.0, description="Positive software limit [unit]")
+    NegaSwLimit: float = Field(-2147483648.0, description="Negative software limit [unit]")
+    FollowingErrorOverVal: float = Field(0.0, ge=0, description="Following error over value [unit]; 0 = no check")
+    FollowingErrorWarningVal: float = Field(0.0, ge=0, description="Following error warning value [unit]; 0 = none")
+
+
+class PositionCountSettings(_Strict):
+    """`_sAXIS_POSITION_COUNT_SETTINGS` — linear or rotary (ring counter) mode."""
+
+    CountMode: ManualEnum(_eMC_COUNT_MODE) = Field(_eMC_COUNT_MODE._mcCountModeLinear, description="Count mode")
+    ModuloMaxPosVal: float = Field(360.0, description="Modulo maximum position setting value [unit]")
+    ModuloMinPosVal: float = Field(0.0, description="Modulo minimum position setting value [unit]")
+
+
+class HomingSettings(_Strict):
+    """`_sAXIS_HOMING_SETTINGS` — homing method and its parameters."""
+
+    Mode: ManualEnum(_eMC_HOMING_MODE) = Field(_eMC_HOMING_MODE._mcHomeSwTurnHomeSwOff, description="Homing method")
+    HomeInputSignal: ManualEnum(_eMC_HOME_INPUT) = Field(_eMC_HOME_INPUT._mcZPhase, description="Home input signal")
+    StartDirection: ManualEnum(_eMC_DIRECTION, (0, 2)) = Field(
+        _eMC_DIRECTION._mcPositiveDirection, description="Homing start direction"
+    )
+    HomeInputDetectionDirection: ManualEnum(_eMC_DIRECTION, (0, 2)) = Field(
+        _eMC_DIRECTION._mcPositiveDirection, description="Home input detection direction"
+    )
+    PosiLimitInputMode: ManualEnum(_eMC_LIMIT_REVERSE_MODE) = Field(
+        _eMC_LIMIT_REVERSE_MODE._mcRevImmediateStop, description="Operation selection at positive limit input"
+    )
+    NegaLimitInputMode: ManualEnum(_eMC_LIMIT_REVERSE_MODE) = Field(
+        _eMC_LIMIT_REVERSE_MODE._mcRevImmediateStop, description="Operation selection at negative limit input"
+    )
+    Vel: float = Field(10000.0, gt=0, description="Homing velocity [unit/s]")
+    ApproachVel: float = Field(1000.0, gt=0, description="Homing approach velocity [unit/s]")
+    Acc: float = Field(0.0, ge=0, description="Homing acceleration [unit/s²]")
+    Dec: float = Field(0.0, ge=0, description="Homing deceleration [unit/s²]")
+    Jerk: float = Field(0.0, ge=0, description="Homing jerk [unit/s³]")
+    HomeInputMaskDistance: float = Field(10000.0, ge=0, description="Home input mask distance [unit]")
+    HomeOffset: float = Field(0.0, description="Home offset [unit]")
+    HoldingTime: int = Field(100, ge=0, le=10000, description="Homing holding time [ms]")
+    CompensationVal: float = Field(0.0, description="Homing compensation value [unit]")
+    CompensationVel: float = Field(1000.0, gt=0, description="Homing compensation velocity [unit/s]")
+
+
+class AxisParameters(_Strict):
+    """`_sAXIS_PARAM` without its Reserved bytes."""
+
+    UnitConversion: UnitConversionSettings = Field(default_factory=UnitConversionSettings)
+    Operation: OperationSettings = Field(default_factory=OperationSettings)
+    OtherOperation: OtherOperationSettings = Field(default_factory=OtherOperationSettings)
+    Limit: LimitSettings = Field(default_factory=LimitSettings)
+    PosCount: PositionCountSettings = Field(default_factory=PositionCountSettings)
+    Homing: HomingSettings = Field(default_factory=HomingSettings)
+
+
+_IDENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]{0,62}$")
+
+
+class AxisConfig(_Strict):
+    """Axis basic settings plus `_sAXIS_PARAM`."""
+
+    name: str = Field(description="Axis variable name (default MC_Axis000 …); an identifier")
+    number: int = Field(ge=0, le=255, description="Logical axis number (index into _MC_AX[])")
+    use: ManualEnum(_eMC_AXIS_USE, (1, 2)) = Field(_eMC_AXIS_USE._mcUsedAxis, description="Axis use")
+    type: ManualEnum(_eMC_AXIS_TYPE) = Field(_eMC_AXIS_TYPE._mcServo, description="Axis type")
+    node_address: int | None = Field(
+        None, ge=1, le=65534, description="EtherCAT node address of the drive/encoder slave; null for virtual axes"
+    )
+    parameters: AxisParameters = Field(default_factory=AxisParameters)
+
+    @field_validator("name")
+    @classmethod
+    def _name_is_identifier(cls, v: str) -> str:
+        if not _IDENT.match(v):
+            raise ValueError("must be an identifier: a letter or _, then letters, digits or _ (max 63)")
+        return v
+
+
+class ControllerSettings(_Strict):
+    primary_period_us: int = Field(1000, description="Primary period [µs]: 125, 250, 500, 1000, 2000, 4000 or 8000")
+
+    @field_validator("primary_period_us")
+    @classmethod
+    def _period_allowed(cls, v: int) -> int:
+        if v not in PRIMARY_PERIODS_US:
+            raise ValueError(f"must be one of {', '.join(map(str, PRIMARY_PERIODS_US))} µs")
+        return v
+
+    @property
+    def period_s(self) -> float:
+        return self.primary_period_us * 1e-6
+
+
+class Project(_Strict):
+    """The project document: one JSON file in the project folder."""
+
+    format: Literal["mcstudio-project"] = "mcstudio-project"
+    schema_version: Literal[1] = Field(SCHEMA_VERSION, description="Version of this document's schema")
+    name: str = Field(min_length=1, max_length=100)
+    description: str = Field("", max_length=2000)
+    controller: ControllerSettings = Field(default_factory=ControllerSettings)
+    axes: list[AxisConfig] = Field(default_factory=list, max_length=256)
+
+    def axis(self, name: str) -> AxisConfig | None:
+        return next((a for a in self.axes if a.name == name), None)
