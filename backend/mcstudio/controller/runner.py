@@ -46,7 +46,8 @@ class Runner:
     def __init__(self, controller: Controller, mode: Mode = "realtime") -> None:
         self._controller = controller
         self._mode: Mode = mode
-        self._queue: deque[tuple[Callable[[Controller], object], Future[object]]] = deque()
+        self._queue: deque[tuple[Callable[[Controller], object], Future[object], bool]] = deque()
+        self._after_cycle: list[tuple[Future[object], object]] = []
         self._wake = threading.Condition()
         self._stop = False
         self._thread: threading.Thread | None = None
@@ -87,15 +88,20 @@ class Runner:
         if self._thread is not None:
             self._thread.join(timeout=5)
 
-    def call(self, fn: Callable[[Controller], T], timeout: float | None = 30.0) -> T:
-        """Run `fn(controller)` in the kernel thread at the next cycle boundary and return its result."""
+    def call(self, fn: Callable[[Controller], T], timeout: float | None = 30.0, *, see_cycle: bool = False) -> T:
+        """Run `fn(controller)` in the kernel thread at the next cycle boundary and return its result.
+
+        With `see_cycle`, the result is returned only after one more cycle has run (unless paused), so the change is
+        visible to the program: two requests in a row can then never fall into the same gap between cycles — an
+        Execute edge set by one PATCH is never undone by the next before an instruction saw it.
+        """
         if self._thread is None or threading.current_thread() is self._thread:
             result = fn(self._controller)
             self._controller.publish()
             return result
         fut: Future[object] = Future()
         with self._wake:
-            self._queue.append((fn, fut))
+            self._queue.append((fn, fut, see_cycle))
             self._wake.notify_all()
         return fut.result(timeout=timeout)  # type: ignore[return-value]
 
@@ -129,16 +135,29 @@ class Runner:
             with self._wake:
                 if not self._queue:
                     break
-                fn, fut = self._queue.popleft()
+                fn, fut, see_cycle = self._queue.popleft()
             served = True
             if fut.set_running_or_notify_cancel():
                 try:
-                    fut.set_result(fn(self._controller))
+                    result = fn(self._controller)
                 except BaseException as exc:  # the caller gets the exception; the loop carries on
                     fut.set_exception(exc)
+                    continue
+                if see_cycle and self._mode != "paused":
+                    self._after_cycle.append((fut, result))
+                else:
+                    fut.set_result(result)
         if served:
             self._publish(force=True)
         return served
+
+    def _release_after_cycle(self) -> None:
+        """Answer the requests that waited for a cycle (called after a cycle, or when pausing)."""
+        if self._after_cycle:
+            waiting, self._after_cycle = self._after_cycle, []
+            self._publish(force=True)
+            for fut, result in waiting:
+                fut.set_result(result)
 
     def _publish(self, *, force: bool = False) -> None:
         now = time.perf_counter()
@@ -171,6 +190,7 @@ class Runner:
             ctrl = self._controller
             try:
                 if mode == "paused":
+                    self._release_after_cycle()
                     self.rtf = 0.0
                     self._rtf_mark = (time.perf_counter(), ctrl.time_s)
                     with self._wake:
@@ -178,6 +198,9 @@ class Runner:
                             self._wake.wait(timeout=0.1)
                 elif mode == "fast":
                     end = time.perf_counter() + FAST_SLICE_S
+                    ctrl.check_leases()
+                    ctrl.run_cycle()
+                    self._release_after_cycle()
                     while time.perf_counter() < end:
                         ctrl.check_leases()
                         ctrl.run_cycle()
@@ -214,5 +237,6 @@ class Runner:
         ctrl.run_cycle()
         if time.perf_counter() > due + period:
             self.overruns += 1
+        self._release_after_cycle()
         self._publish()
         self._update_rtf()

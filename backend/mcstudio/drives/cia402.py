@@ -87,7 +87,8 @@ class Cia402Drives:
 
     def __init__(self, n: int) -> None:
         self.n = n
-        self.state = np.full(n, PDS.NotReadyToSwitchOn, dtype=np.int8)
+        # A drive has finished its self-test (NotReadyToSwitchOn) by the time the network reaches Operational.
+        self.state = np.full(n, PDS.SwitchOnDisabled, dtype=np.int8)
         self.main_power = np.ones(n, dtype=bool)
         self.mode_display = np.full(n, MODE_CSP, dtype=np.int8)
         self.position = np.zeros(n, dtype=np.int64)  # motor position in encoder pulses (64-bit internally)

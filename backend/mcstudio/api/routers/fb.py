@@ -29,7 +29,8 @@ def list_fbs(studio: Studio = Depends(get_studio)) -> list[FBOut]:
     response_model=FBOut,
     status_code=201,
     summary="Create an instance",
-    description="The instance is called once per control period, in creation order, from the next cycle on. In-outs "
+    description="The instance is called once per control period, in creation order, from the next cycle on; unless "
+    "the controller is paused, the response comes after that first call and shows its outputs. In-outs "
     "(`Axis`) are given by name. With `lease_s` the instance is a dead-man: unless renewed (PATCH or a WebSocket "
     "heartbeat) within `lease_s`, its Execute/Enable-type inputs drop to FALSE.",
 )
@@ -37,7 +38,7 @@ def create_fb(body: FBCreate, studio: Studio = Depends(get_studio)) -> FBOut:
     def create(c: Controller) -> int:
         return c.fb(body.type, lease_s=body.lease_s, **body.inputs).id
 
-    fb_id = studio.runner.call(create)
+    fb_id = studio.runner.call(create, see_cycle=True)
     out = studio.fb_out(studio.runner.snapshot, fb_id)
     assert out is not None
     return out
@@ -53,9 +54,11 @@ def get_fb(fb_id: int, studio: Studio = Depends(get_studio)) -> FBOut:
 
 
 @router.patch("/fb/{fb_id}", response_model=FBOut, summary="Change inputs (applied at the next cycle boundary)",
+              description="Unless the controller is paused, the response comes after the instance was called once "
+              "with the new inputs, so consecutive PATCHes are always seen in different cycles (no lost edges).",
               responses={404: {"description": "No such instance"}})
 def patch_fb(fb_id: int, body: FBPatch, studio: Studio = Depends(get_studio)) -> FBOut:
-    studio.runner.call(lambda c: c.set_inputs(fb_id, body.inputs))
+    studio.runner.call(lambda c: c.set_inputs(fb_id, body.inputs), see_cycle=True)
     out = studio.fb_out(studio.runner.snapshot, fb_id)
     assert out is not None
     return out

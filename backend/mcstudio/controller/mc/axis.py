@@ -83,6 +83,7 @@ class Axis:
         job.status = status
         job.error_id = error_id
         job.finished_cycle = self.m.cycle
+        self.m.job_changed(job)
         if job is self.current:
             self.current = None
         if job is self.buffered:
@@ -261,39 +262,46 @@ class Axis:
     def on_planned(self, job: Job) -> None:
         job.status = JobStatus.ACTIVE
         job.replan = False
+        job.cmd_done_cycle = -1
 
-    def on_profile_finished(self, job: Job) -> None:
-        """The profile of the current job reached its tail (target position / target velocity / standstill)."""
+    def on_profile_finished(self, job: Job) -> bool:
+        """The profile of the current job reached its tail (target position / target velocity / standstill).
+
+        Returns True while the end is still pending and must be reported again next period. Ends are reported one
+        period after the profile reached them, when the command values the axis reports agree: Cmd.Vel (a difference
+        of positions) equals the target velocity (InVelocity) or 0, and the final command value has reached the
+        drive (positioning complete, stop complete). A positioning with an in-position check time also waits until
+        the actual position is inside the in-position range.
+        """
         i = self.i
-        if job.kind == JobKind.POSITION:
-            check_ms = self.params.Operation.InPosCheckTime
-            if check_ms > 0:
-                if abs(float(self.m.act_pos[i]) - job.target) > self.params.Operation.InPosRange:
-                    self.in_pos_waiting = True
-                    return
-            self.in_pos_waiting = False
-            self.m.profiles.clear(i)
-            self._end_job(job, JobStatus.DONE)
-            if self.buffered is not None:
-                self._promote_buffered()
-            else:
-                self._set_state(self._rest_state())
-        elif job.kind in (JobKind.VELOCITY, JobKind.JOG):
-            if job.stopping:
-                self.m.profiles.clear(i)
-                self._end_job(job, JobStatus.DONE)
-                self._set_state(self._rest_state())
-            elif not job.in_velocity:
+        cycle = self.m.cycle
+        if job.cmd_done_cycle < 0:
+            job.cmd_done_cycle = cycle
+        if cycle <= job.cmd_done_cycle:
+            return True  # the final command value is sent in this period's outputs
+        if job.kind in (JobKind.VELOCITY, JobKind.JOG) and not job.stopping:
+            # InVelocity: Cmd.Vel (difference of positions) has reached the target velocity
+            if not job.in_velocity:
                 job.in_velocity = True
+                self.m.job_changed(job)
                 if self.buffered is not None:
                     self._promote_buffered()
-        elif job.kind == JobKind.STOP:
-            self.m.profiles.clear(i)
-            self._end_job(job, JobStatus.DONE)
+            return False
+        if job.kind == JobKind.POSITION:
+            op = self.params.Operation
+            if op.InPosCheckTime > 0 and abs(float(self.m.act_pos[i]) - job.target) > op.InPosRange:
+                self.in_pos_waiting = True
+                return True
+            self.in_pos_waiting = False
+        self.m.profiles.clear(i)
+        self._end_job(job, JobStatus.DONE)
+        if job.kind == JobKind.ERROR_STOP:
+            return False
+        if job.kind == JobKind.POSITION and self.buffered is not None:
+            self._promote_buffered()
+        else:
             self._set_state(self._rest_state())
-        elif job.kind == JobKind.ERROR_STOP:
-            self.m.profiles.clear(i)
-            self._end_job(job, JobStatus.DONE)
+        return False
 
     # ------------------------------------------------------------------ _sAXIS_REF
     def capture(self) -> tuple[int, int, int, bool, bool, bool]:

@@ -53,6 +53,7 @@ class Job:
     stopping: bool = False  # jog released: decelerating to the end of the job
     in_pos_waiting: bool = False
     finished_cycle: int = -1
+    cmd_done_cycle: int = -1  # period in which the command profile reached its end
     info: dict[str, Any] = field(default_factory=dict)
 
     @property

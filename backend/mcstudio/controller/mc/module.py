@@ -60,7 +60,8 @@ class MotionModule:
         self.override = np.ones(n)
         self.profiles = ProfileTable(n)
         self.planner = Planner(period_s)
-        self._scheduled: dict[int, Axis] = {}
+        self._scheduled: dict[int, Axis] = {}  # jobs accepted (or changed) this period, planned in its motion stage
+        self.changed: list[Any] = []  # jobs whose status changed this period (their instances are refreshed)
         # bus mapping: axes with a slave on the network
         rows, slaves = [], []
         if network is not None:
@@ -83,6 +84,9 @@ class MotionModule:
     # ------------------------------------------------------------------ helpers for axes
     def schedule(self, axis: Axis) -> None:
         self._scheduled[axis.i] = axis
+
+    def job_changed(self, job: Any) -> None:
+        self.changed.append(job)
 
     def log_error(self, code: int, *, axis: Axis | None, source: str | None, detail: str = "") -> None:
         d = E.describe(code)
@@ -166,9 +170,13 @@ class MotionModule:
                 if job is None:
                     self.notify[i] = False
                     continue
-                axis.on_profile_finished(job)
-                # keep reporting only while something still waits on the end (in-position check)
-                self.notify[i] = axis.in_pos_waiting
+                # keep reporting while the end is pending (final command in transit, in-position check)
+                self.notify[i] = axis.on_profile_finished(job)
+        if self._scheduled:
+            # started during this stage (a buffered instruction taking over, an error stop): from the next period
+            scheduled, self._scheduled = self._scheduled, {}
+            for i, axis in scheduled.items():
+                self._plan(i, axis, start_cycle=cycle + 1)
         # derived command values (manual §2.3: differences of command positions / velocities)
         vel = (self.cmd_pos - self.prev_cmd_pos) / T
         accdec = (np.abs(vel) - np.abs(self.cmd_vel)) / T
@@ -180,8 +188,17 @@ class MotionModule:
         self.cmd_accdec = accdec
         self.cmd_vel = vel
         self.prev_cmd_pos[:] = self.cmd_pos
+        # Push the MC module's status changes to the instances (Done, CommandAborted, InVelocity, Error) so they show
+        # in the period the change happened, independent of program order. Active is read by the instance at its
+        # next call: one period after Busy, as the manual's charts show.
+        if self.changed:
+            changed, self.changed = self.changed, []
+            for job in changed:
+                owner = job.owner
+                if owner is not None:
+                    owner.sync_job()
 
-    def _plan(self, i: int, axis: Axis) -> None:
+    def _plan(self, i: int, axis: Axis, start_cycle: int | None = None) -> None:
         job = axis.current
         if job is None or not job.running:
             return
@@ -196,7 +213,7 @@ class MotionModule:
         except PlanningError as err:
             axis.raise_error(E_INTERNAL, source="profile planner", detail=str(err))
             return
-        self.profiles.load(i, seg, self.cycle)
+        self.profiles.load(i, seg, self.cycle if start_cycle is None else start_cycle)
         self.notify[i] = True
         self.step_accdec[i] = job.kind != JobKind.ERROR_STOP and (job.acceleration == 0 or job.deceleration == 0)
         axis.on_planned(job)

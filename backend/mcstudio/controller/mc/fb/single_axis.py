@@ -497,15 +497,7 @@ class MC_MoveJog(FunctionBlock):
         # CommandAborted: cleared with the enable going FALSE, or one period later if both were already FALSE
         if o["CommandAborted"] and not (pe or ne) and self._aborted_cycle < self.mc.cycle:
             o["CommandAborted"] = False
-        job = self.job
-        if job is not None and not job.running:
-            self.job = None
-            o["Busy"] = False
-            if job.status == JobStatus.ABORTED:
-                o["CommandAborted"] = True
-                self._aborted_cycle = self.mc.cycle
-            elif job.status == JobStatus.ERROR:
-                self._set_error(job.error_id, self.axis)
+        self.sync_job()
         if o["Error"]:
             return
         want = 1 if pe_edge else -1 if ne_edge else 0
@@ -515,6 +507,19 @@ class MC_MoveJog(FunctionBlock):
             held = pe if self._dir > 0 else ne
             if not held:
                 self.axis.release_jog(self.job)
+
+    def sync_job(self) -> None:
+        job = self.job
+        if job is None or job.running:
+            return
+        o = self.out
+        self.job = None
+        o["Busy"] = False
+        if job.status == JobStatus.ABORTED:
+            o["CommandAborted"] = True
+            self._aborted_cycle = self.mc.cycle
+        elif job.status == JobStatus.ERROR:
+            self._set_error(job.error_id, self.axis)
 
     def _start(self, direction: int) -> None:
         o = self.out

@@ -1,0 +1,33 @@
+import "@mantine/core/styles.css";
+import "@mantine/notifications/styles.css";
+import "uplot/dist/uPlot.min.css";
+import "./styles.css";
+
+import { MantineProvider } from "@mantine/core";
+import { Notifications } from "@mantine/notifications";
+import { StrictMode } from "react";
+import { createRoot } from "react-dom/client";
+import { App } from "./App";
+import { startCatalog } from "./store/catalog";
+import { startCommands } from "./store/commands";
+import { startEvents } from "./store/events";
+import { startLive } from "./store/live";
+import { theme } from "./theme";
+
+// Module-level services: they live as long as the page (not tied to React mounts).
+startLive();
+startCatalog();
+startEvents();
+startCommands();
+
+const root = document.getElementById("root");
+if (!root) throw new Error("#root missing from index.html");
+
+createRoot(root).render(
+  <StrictMode>
+    <MantineProvider theme={theme} defaultColorScheme="light" forceColorScheme="light">
+      <Notifications position="top-right" limit={5} zIndex={1000} />
+      <App />
+    </MantineProvider>
+  </StrictMode>,
+);
