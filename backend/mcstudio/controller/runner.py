@@ -149,6 +149,7 @@ class Runner:
                     fut.set_result(result)
         if served:
             self._publish(force=True)
+            time.sleep(0)  # hand the GIL to the threads whose requests were just answered
         return served
 
     def _release_after_cycle(self) -> None:
@@ -158,6 +159,7 @@ class Runner:
             self._publish(force=True)
             for fut, result in waiting:
                 fut.set_result(result)
+            time.sleep(0)
 
     def _publish(self, *, force: bool = False) -> None:
         now = time.perf_counter()
@@ -206,6 +208,9 @@ class Runner:
                         ctrl.run_cycle()
                     self._publish()
                     self._update_rtf()
+                    # Let the API and WebSocket threads run: a busy kernel thread would otherwise starve them of
+                    # the GIL for tens of milliseconds.
+                    time.sleep(0)
                 else:
                     self._realtime_cycle(ctrl)
             except Exception:

@@ -4,6 +4,7 @@ WebSocket protocol (`/api/v1/ws`, JSON text frames):
   client → server  {"type": "subscribe", "rate_hz": 30, "axes": null, "fbs": null, "events": true}
                    {"type": "heartbeat", "fbs": [3]}        renews the dead-man leases of instances 3 …
   server → client  {"type": "snapshot", "controller": {...}, "axes": [...], "fbs": {...}, "events": [...]}
+                   {"type": "subscribed", ...}                acknowledges a subscribe (messages are handled in order)
                    {"type": "error", "detail": "..."}         for a malformed client message
 A snapshot is sent when the controller advanced, and at least once a second. When the socket closes, every instance
 whose lease this socket renewed drops its Execute/Enable inputs at once (a lost browser stops its jog).
@@ -70,6 +71,7 @@ async def websocket(ws: WebSocket) -> None:
             try:
                 if kind == "subscribe":
                     state["sub"] = WsSubscribe.model_validate(msg)
+                    await ws.send_json({**state["sub"].model_dump(), "type": "subscribed"})
                 elif kind == "heartbeat":
                     hb = WsHeartbeat.model_validate(msg)
                     leased.update(hb.fbs)
@@ -91,8 +93,8 @@ async def websocket(ws: WebSocket) -> None:
     since_event = studio.controller.events.last_seq
     try:
         while not task.done():
+            await asyncio.sleep(1.0 / state["sub"].rate_hz)
             sub: WsSubscribe = state["sub"]
-            await asyncio.sleep(1.0 / sub.rate_hz)
             snap = studio.runner.snapshot
             now = loop.time()
             new_events = studio.controller.events.last_seq != since_event
@@ -118,5 +120,7 @@ async def websocket(ws: WebSocket) -> None:
                     if entry is not None and entry.lease_s is not None:
                         entry.fb.drop_dead_man()
 
+            # Synchronous on purpose: the task may be cancelled, and an await in `finally` would be cancelled too.
+            # The kernel serves the request at its next cycle boundary (≤ one period).
             with contextlib.suppress(Exception):
-                await asyncio.to_thread(studio.runner.call, drop)
+                studio.runner.call(drop, timeout=2.0)
