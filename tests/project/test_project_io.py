@@ -93,7 +93,7 @@ def test_corrupt_file_is_refused_and_untouched(tmp_path: Path) -> None:
 def test_missing_folder_and_file(tmp_path: Path) -> None:
     with pytest.raises(ProjectError, match="not a project folder"):
         load_project(tmp_path / "nope")
-    with pytest.raises(ProjectError, match="holds no project.json"):
+    with pytest.raises(ProjectError, match=r"holds no project\.json"):
         load_project(tmp_path)
 
 

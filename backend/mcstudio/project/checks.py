@@ -173,7 +173,8 @@ def check_project(project: Project) -> list[Issue]:
             issues.append(Issue(f"{base}.name", f"duplicate axis name {ax.name!r} (also axes[{names[ax.name]}])"))
         names.setdefault(ax.name, i)
         if ax.number in numbers:
-            issues.append(Issue(f"{base}.number", f"duplicate axis number {ax.number} (also axes[{numbers[ax.number]}])"))
+            other = numbers[ax.number]
+            issues.append(Issue(f"{base}.number", f"duplicate axis number {ax.number} (also axes[{other}])"))
         numbers.setdefault(ax.number, i)
         virtual = ax.type in (_eMC_AXIS_TYPE._mcVirServo, _eMC_AXIS_TYPE._mcVirEncdr)
         if virtual and ax.node_address is not None:
@@ -182,8 +183,9 @@ def check_project(project: Project) -> list[Issue]:
             issues.append(Issue(f"{base}.node_address", "a servo or encoder axis needs the node address of its slave"))
         if ax.node_address is not None:
             if ax.node_address in nodes:
+                other = nodes[ax.node_address]
                 issues.append(Issue(f"{base}.node_address",
-                                    f"node address {ax.node_address} is already used by axes[{nodes[ax.node_address]}]"))
+                                    f"node address {ax.node_address} is already used by axes[{other}]"))
             nodes.setdefault(ax.node_address, i)
         for code, path, msg in check_axis_parameters(ax.parameters):
             issues.append(Issue(f"{base}.parameters.{path}", msg, f"573B/{code:04X}"))

@@ -38,7 +38,7 @@ def parse_enum(cls: type[enum.IntEnum], value: Any, allowed: tuple[int, ...] | N
     return member
 
 
-def ManualEnum(cls: type[enum.IntEnum], allowed: tuple[int, ...] | None = None) -> Any:  # noqa: N802
+def ManualEnum(cls: type[enum.IntEnum], allowed: tuple[int, ...] | None = None) -> Any:
     names = [m.name for m in cls if allowed is None or int(m) in allowed]
     numbers = [int(m) for m in cls if allowed is None or int(m) in allowed]
     return Annotated[

@@ -155,3 +155,35 @@ def test_stop_negative_deceleration_is_5424(ctrl: Controller, deceleration: floa
     st = ctrl.fb("MC_Stop", Axis="MC_Axis000", Execute=True, Deceleration=deceleration)
     ctrl.step(1)
     assert st.Error and st.ErrorID == 0x5424
+
+
+def test_second_stop_ends_the_first_with_done(ctrl: Controller) -> None:
+    """MC_Stop multi-executed on MC_Stop: the running one gets Done (seed 000 line 5980; the output table's
+    'CommandAborted when aborted by another MC_Stop' is the other reading — see docs/decisions.md)."""
+    power_on(ctrl)
+    mv = ctrl.fb("MC_MoveVelocity", Axis="MC_Axis000", Execute=True, Velocity=100.0, Acceleration=1000.0)
+    step_until(ctrl, mv, "InVelocity")
+    s1 = ctrl.fb("MC_Stop", Axis="MC_Axis000", Execute=True, Deceleration=100.0)
+    ctrl.step(50)
+    s2 = ctrl.fb("MC_Stop", Axis="MC_Axis000", Execute=True, Deceleration=1000.0)
+    ctrl.step(1)
+    assert s1.Done and not s1.CommandAborted and s2.Busy
+    step_until(ctrl, s2, "Done")
+    s1.Execute = False
+    ctrl.step(1)
+    assert ctrl.mc.axes[0].state == AxisState.Stopping, "s2 still holds Execute"
+    s2.Execute = False
+    ctrl.step(1)
+    assert ctrl.mc.axes[0].state == AxisState.Standstill
+
+
+def test_servo_off_ends_stop_with_done(ctrl: Controller) -> None:
+    """MC_Stop's Done becomes TRUE when the axis is turned servo OFF during the stop (seed 000 MC_Stop rules)."""
+    pw = power_on(ctrl)
+    mv = ctrl.fb("MC_MoveVelocity", Axis="MC_Axis000", Execute=True, Velocity=100.0, Acceleration=1000.0)
+    step_until(ctrl, mv, "InVelocity")
+    st = ctrl.fb("MC_Stop", Axis="MC_Axis000", Execute=True, Deceleration=10.0)
+    ctrl.step(10)
+    pw.Enable = False
+    ctrl.step(1)
+    assert st.Done and not st.CommandAborted

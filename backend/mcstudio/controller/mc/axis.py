@@ -238,6 +238,9 @@ class Axis:
             return "abort"
         if self.state == S.Disabled or not self.servo_on:
             return "done"
+        if self.current is not None and self.current.kind == JobKind.STOP:
+            # MC_Stop instances may multi-execute; the running one ends with Done (seed 000 line 5980, decisions.md)
+            self._end_job(self.current, JobStatus.DONE)
         self.abort_all()
         self._start(job)
         return "ok"

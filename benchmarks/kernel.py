@@ -1,0 +1,72 @@
+"""Kernel scaling: N servo axes on the emulated EtherCAT bus, half positioning back and forth, half in velocity
+control, snapshots published at the studio's rate; the controller runs as fast as it can (fast mode)."""
+
+from __future__ import annotations
+
+import resource
+import time
+from typing import Any
+
+from mcstudio.controller.kernel import Controller
+from mcstudio.project.models import AxisConfig, ControllerSettings, Project
+
+PARAMS = {
+    "UnitConversion": {"UnitDisplay": "_mcMm", "CmdPlsCountPerMotorRotation": 1048576,
+                       "WorkTravelDistancePerMotorRotation": 10.0},
+    "Operation": {"MaxVel": 1000.0, "MaxJogVel": 100.0, "MaxAcc": 20000.0, "MaxDec": 20000.0},
+    "Homing": {"Vel": 50.0, "ApproachVel": 5.0, "CompensationVel": 10.0},
+}
+
+
+def build(axes: int, period_us: int) -> Controller:
+    project = Project(
+        name=f"bench-{axes}",
+        controller=ControllerSettings(primary_period_us=period_us),
+        axes=[AxisConfig(name=f"MC_Axis{i:03d}", number=i, type="_mcServo", node_address=i + 1, parameters=PARAMS)
+              for i in range(axes)],
+    )
+    return Controller(project)
+
+
+def run(*, axes: int, sim_seconds: float, period_us: int) -> dict[str, Any]:
+    c = build(axes, period_us)
+    for i in range(axes):
+        c.fb("MC_Power", Axis=f"MC_Axis{i:03d}", Enable=True)
+    c.step(10)
+    moves = []
+    for i in range(axes):
+        name = f"MC_Axis{i:03d}"
+        if i % 2 == 0:
+            moves.append(c.fb("MC_MoveAbsolute", Axis=name, Execute=True, Position=50.0 + i, Velocity=200.0,
+                              Acceleration=2000.0, Deceleration=2000.0, Jerk=50000.0))
+        else:
+            c.fb("MC_MoveVelocity", Axis=name, Execute=True, Velocity=25.0 + i % 7, Acceleration=500.0,
+                 Deceleration=500.0)
+    cycles = round(sim_seconds / c.period_s)
+    publish_every = max(1, round((1 / 120) / c.period_s))  # the studio publishes at about 120 Hz
+    t0 = time.perf_counter()
+    for k in range(cycles):
+        if k % 400 == 0:  # keep the positioning axes busy: new targets back and forth
+            for mv in moves:
+                mv.Execute = False
+            c.step(1, publish=False)
+            for j, mv in enumerate(moves):
+                mv.Position = (50.0 + j) * (1 if (k // 400) % 2 else -1)
+                mv.Execute = True
+        c.step(1, publish=False)
+        if k % publish_every == 0:
+            c.publish()
+    wall = time.perf_counter() - t0
+    sim = cycles * c.period_s
+    peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    return {
+        "scenario": "kernel",
+        "axes": axes,
+        "period_us": period_us,
+        "sim_s": sim,
+        "wall_s": round(wall, 3),
+        "rtf": round(sim / wall, 3),
+        "us_per_period": round(wall / cycles * 1e6, 2),
+        "us_per_axis_period": round(wall / cycles / axes * 1e6, 3),
+        "peak_mb": round(peak_mb, 1),
+    }
