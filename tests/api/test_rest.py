@@ -332,3 +332,22 @@ def test_openapi_and_docs(client: TestClient) -> None:
     assert "/api/v1/fb" in spec["paths"] and "WsSubscribe" in spec["components"]["schemas"]
     assert client.get("/docs").status_code == 200
     assert client.get("/").status_code == 503  # no frontend build in this test app
+
+
+def test_serves_the_built_studio(tmp_path: Path, studio: Any) -> None:
+    """With a frontend build, / and unknown client routes serve index.html, assets are served, API 404s stay JSON,
+    and paths cannot escape the build folder."""
+    from mcstudio.api.app import create_app
+
+    (tmp_path / "assets").mkdir()
+    (tmp_path / "index.html").write_text("<html>studio</html>")
+    (tmp_path / "assets" / "app.js").write_text("console.log(1)")
+    (tmp_path / "favicon.svg").write_text("<svg/>")
+    with TestClient(create_app(studio, static_dir=tmp_path)) as c:
+        assert c.get("/").text == "<html>studio</html>"
+        assert c.get("/axes/MC_Axis000").text == "<html>studio</html>"
+        assert c.get("/assets/app.js").text == "console.log(1)"
+        assert c.get("/favicon.svg").text == "<svg/>"
+        assert c.get("/api/v1/nope").status_code == 404
+        assert c.get("/api/v1/health").json()["status"] == "ok"
+        assert "root:" not in c.get("/../../../../etc/passwd").text

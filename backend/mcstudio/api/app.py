@@ -74,11 +74,11 @@ def create_app(studio: Studio, *, static_dir: Path | None = None, cors_origins: 
             app.mount("/assets", StaticFiles(directory=assets), name="assets")
         index = static / "index.html"
 
-        @app.get("/", include_in_schema=False)
+        @app.get("/", include_in_schema=False, response_model=None)
         def index_page() -> FileResponse:
             return FileResponse(index, headers={"Cache-Control": "no-cache"})
 
-        @app.get("/{path:path}", include_in_schema=False)
+        @app.get("/{path:path}", include_in_schema=False, response_model=None)
         def spa(path: str) -> FileResponse | JSONResponse:
             if path.startswith(("api/", "docs")):
                 return JSONResponse({"detail": "Not Found"}, status_code=404)
@@ -88,7 +88,7 @@ def create_app(studio: Studio, *, static_dir: Path | None = None, cors_origins: 
             return FileResponse(index, headers={"Cache-Control": "no-cache"})
     else:
 
-        @app.get("/", include_in_schema=False)
+        @app.get("/", include_in_schema=False, response_model=None)
         def no_frontend() -> JSONResponse:
             return JSONResponse(
                 {"detail": "the studio frontend is not built; run 'make run' (or 'npm run build' in frontend/)",

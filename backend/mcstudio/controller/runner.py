@@ -5,9 +5,11 @@ as possible, `paused` only advances on explicit steps. Every request from anothe
 callable queued with `call()` and executed by this thread between two cycles, so kernel state is never touched
 concurrently; readers use the published immutable snapshot.
 
-Realtime pacing: cycle k is due at t0 + k·T. A cycle that completes after its own deadline t0 + (k+1)·T is an overrun.
-If the runner falls more than `MAX_LAG_PERIODS` behind (machine suspended, debugger), it re-anchors t0 instead of
-racing to catch up, and counts the skipped periods as overruns.
+Realtime pacing: period k spans [t0 + k·T, t0 + (k+1)·T] of wall time. The runner may compute cycle k up to
+`REALTIME_LEAD_S` before its period begins — a small jitter buffer, because the operating system sometimes wakes a
+thread milliseconds late — and counts an overrun when cycle k completes after t0 + (k+1)·T, i.e. when simulated time
+really fell behind wall time. If it falls more than `MAX_LAG_PERIODS` behind (machine suspended, debugger), it
+re-anchors t0 instead of racing to catch up, and counts the skipped periods as overruns.
 """
 
 from __future__ import annotations
@@ -33,6 +35,7 @@ MAX_LAG_PERIODS = 50
 FAST_SLICE_S = 0.004  # fast mode: run cycles for this long, then serve requests and publish
 PUBLISH_INTERVAL_S = 1 / 120  # snapshots in running modes at most this often (and after every request)
 RTF_WINDOW_S = 0.5
+REALTIME_LEAD_S = 0.004
 
 
 @dataclass(frozen=True)
@@ -225,22 +228,23 @@ class Runner:
         if self._rt_anchor is None:
             self._rt_anchor = (time.perf_counter(), ctrl.cycle)
         t0, c0 = self._rt_anchor
-        due = t0 + (ctrl.cycle - c0) * period
+        begin = t0 + (ctrl.cycle - c0) * period
+        lead = max(period, REALTIME_LEAD_S)
         now = time.perf_counter()
-        if now < due:
+        if now < begin - lead:
             with self._wake:
                 if not self._queue and not self._stop:
-                    self._wake.wait(timeout=due - now)
+                    self._wake.wait(timeout=begin - lead - now)
             return
-        lag = (now - due) / period
+        lag = (now - begin) / period
         if lag > MAX_LAG_PERIODS:
             skipped = int(lag)
             self.overruns += skipped
             self._rt_anchor = (now, ctrl.cycle)
-            due = now
+            begin = now
         ctrl.check_leases()
         ctrl.run_cycle()
-        if time.perf_counter() > due + period:
+        if time.perf_counter() > begin + period:
             self.overruns += 1
         self._release_after_cycle()
         self._publish()

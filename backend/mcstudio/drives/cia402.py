@@ -67,19 +67,29 @@ _NEXT = np.array(
 _SW = np.array([0x0000, 0x0040, 0x0021, 0x0023, 0x0027, 0x0007, 0x000F, 0x0008], dtype=np.uint16)
 
 
+def _command_of(low_bits: int) -> int:
+    ev, qs, so, eo = low_bits & 0x2, low_bits & 0x4, low_bits & 0x1, low_bits & 0x8
+    if not ev:
+        return int(Cmd.DisableVoltage)
+    if not qs:
+        return int(Cmd.QuickStop)
+    if not so:
+        return int(Cmd.Shutdown)
+    return int(Cmd.EnableOperation) if eo else int(Cmd.SwitchOn)
+
+
+# controlword bits 0–3 → command (a 16-entry table keeps the period free of per-bit array operations)
+_CMD_OF_LOW_BITS = np.array([_command_of(b) for b in range(16)], dtype=np.int8)
+_FAULT = int(PDS.Fault)
+_OE = int(PDS.OperationEnabled)
+_SO = int(PDS.SwitchedOn)
+_RTSO = int(PDS.ReadyToSwitchOn)
+_SOD = int(PDS.SwitchOnDisabled)
+
+
 def decode_command(cw: np.ndarray) -> np.ndarray:
     """Controlword → Cmd code per drive (vectorised)."""
-    b = cw.astype(np.int32)
-    cmd = np.full(b.shape, Cmd.DisableVoltage, dtype=np.int8)
-    ev = (b & 0x2) != 0  # enable voltage
-    qs = (b & 0x4) != 0  # quick stop (active low)
-    so = (b & 0x1) != 0
-    eo = (b & 0x8) != 0
-    cmd[ev & ~qs] = Cmd.QuickStop
-    cmd[ev & qs & ~so] = Cmd.Shutdown
-    cmd[ev & qs & so & ~eo] = Cmd.SwitchOn
-    cmd[ev & qs & so & eo] = Cmd.EnableOperation
-    return cmd
+    return _CMD_OF_LOW_BITS[cw & 0x000F]
 
 
 class Cia402Drives:
@@ -100,20 +110,23 @@ class Cia402Drives:
         self._prev_cw[:] = controlword
         cmd = decode_command(controlword)
         nxt = _NEXT[self.state, cmd]
-        # Without main-circuit power a drive cannot leave SwitchOnDisabled/ReadyToSwitchOn towards operation.
-        blocked = ~self.main_power & (nxt >= PDS.SwitchedOn) & (nxt <= PDS.OperationEnabled)
-        nxt[blocked] = np.minimum(self.state[blocked], PDS.ReadyToSwitchOn)
-        nxt[fault_reset & (self.state == PDS.Fault)] = PDS.SwitchOnDisabled
+        if not self._all_powered:
+            # Without main-circuit power a drive cannot leave SwitchOnDisabled/ReadyToSwitchOn towards operation.
+            blocked = ~self.main_power & (nxt >= _SO) & (nxt <= _OE)
+            nxt[blocked] = np.minimum(self.state[blocked], _RTSO)
+        if fault_reset.any():
+            nxt[fault_reset & (self.state == _FAULT)] = _SOD
         self.state[:] = nxt
         self.mode_display[:] = np.where(mode_of_operation != 0, mode_of_operation, self.mode_display)
 
+    @property
+    def _all_powered(self) -> bool:
+        return bool(self.main_power.all())
+
     def statusword(self) -> np.ndarray:
-        sw = _SW[self.state].copy()
-        # bit 4 "voltage enabled": the main circuit (DC link) is powered — Omron's DrvStatus.MainPower
-        sw |= np.where(self.main_power, np.uint16(0x0010), np.uint16(0))
-        sw |= np.uint16(0x0200)  # remote
-        return sw
+        # bit 4 "voltage enabled": the main circuit (DC link) is powered — Omron's DrvStatus.MainPower; bit 9 remote
+        return _SW[self.state] | (self.main_power.astype(np.uint16) << 4) | np.uint16(0x0200)
 
     @property
     def operation_enabled(self) -> np.ndarray:
-        return self.state == PDS.OperationEnabled
+        return self.state == _OE

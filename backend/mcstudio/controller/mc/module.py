@@ -27,6 +27,33 @@ DRV_BITS = ("ServoOn", "Ready", "MainPower", "P_OT", "N_OT", "HomeSw", "Home", "
 _B = {name: 1 << k for k, name in enumerate(DRV_BITS)}
 
 CW_SHUTDOWN, CW_SWITCH_ON, CW_ENABLE = 0x0006, 0x0007, 0x000F
+
+
+def _drv_of_statusword(sw: int) -> int:
+    oe = (sw & 0x6F) == 0x27
+    fault = (sw & 0x4F) == 0x08
+    bits = 0
+    bits |= _B["ServoOn"] if oe else 0
+    bits |= _B["Ready"] if (not fault and (sw & 0x4F) != 0) else 0
+    bits |= _B["MainPower"] if sw & 0x10 else 0
+    bits |= _B["DrvAlarm"] if fault else 0
+    bits |= _B["DrvWarning"] if sw & 0x80 else 0
+    bits |= _B["ILA"] if sw & 0x800 else 0
+    return bits
+
+
+# statusword → DrvStatus bits, and (servo on, modes display) → CSP/CSV/CST: lookup tables instead of per-bit
+# array operations in every period
+_DRV_OF_SW = np.array([_drv_of_statusword(sw) for sw in range(1 << 16)], dtype=np.uint32)
+_MODE_BITS = np.zeros(256, dtype=np.uint32)
+_MODE_BITS[8], _MODE_BITS[9], _MODE_BITS[10] = _B["CSP"], _B["CSV"], _B["CST"]
+_SERVO_ON_BIT = _B["ServoOn"]
+_VIRTUAL_ON = _B["ServoOn"] | _B["CSP"] | _B["Ready"] | _B["MainPower"]
+_VIRTUAL_OFF = _B["Ready"] | _B["MainPower"]
+_CW_FOR_STATE = np.full(0x70, CW_SHUTDOWN, dtype=np.uint16)
+_CW_FOR_STATE[0x21] = CW_SWITCH_ON
+_CW_FOR_STATE[0x23] = CW_ENABLE
+_CW_FOR_STATE[0x27] = CW_ENABLE
 E_INTERNAL = 0xFFFF  # emulator-internal failure (never a manual code; see docs/decisions.md)
 
 
@@ -110,11 +137,11 @@ class MotionModule:
     # ------------------------------------------------------------------ stage 2: inputs
     def inputs(self) -> None:
         T = self.period_s
-        prev_on = self.servo_on.copy()
+        prev_on = self.servo_on.copy()  # (servo changes are rare events handled per axis below)
         if self.bus_rows.size:
             tx = self.network.tx  # type: ignore[union-attr]
             rows, sl = self.bus_rows, self.bus_slaves
-            sw = tx["statusword"][sl].astype(np.uint32)
+            sw = tx["statusword"][sl]
             pos32 = tx["position_actual"][sl].astype(np.int64)
             delta = (pos32 - self._prev_pos32 + 2**31) % 2**32 - 2**31
             self._prev_pos32 = pos32
@@ -122,25 +149,15 @@ class MotionModule:
             new_act = self.act_count[rows] / self.ppu[rows]
             self.act_vel[rows] = (new_act - self.act_pos[rows]) / T
             self.act_pos[rows] = new_act
-            oe = (sw & 0x6F) == 0x27
-            fault = (sw & 0x4F) == 0x08
-            mode = tx["modes_display"][sl]
-            drv = np.zeros(rows.size, dtype=np.uint32)
-            drv |= np.where(oe, _B["ServoOn"], 0).astype(np.uint32)
-            drv |= np.where(~fault & ((sw & 0x4F) != 0), _B["Ready"], 0).astype(np.uint32)
-            drv |= np.where((sw & 0x10) != 0, _B["MainPower"], 0).astype(np.uint32)
-            drv |= np.where(fault, _B["DrvAlarm"], 0).astype(np.uint32)
-            drv |= np.where((sw & 0x80) != 0, _B["DrvWarning"], 0).astype(np.uint32)
-            drv |= np.where((sw & 0x800) != 0, _B["ILA"], 0).astype(np.uint32)
-            drv |= np.where(oe & (mode == 8), _B["CSP"], 0).astype(np.uint32)
-            drv |= np.where(oe & (mode == 9), _B["CSV"], 0).astype(np.uint32)
-            drv |= np.where(oe & (mode == 10), _B["CST"], 0).astype(np.uint32)
+            drv = _DRV_OF_SW[sw]
+            oe = (drv & _SERVO_ON_BIT) != 0
+            drv |= _MODE_BITS[tx["modes_display"][sl].view(np.uint8)] * oe
             self.drv[rows] = drv
             self.servo_on[rows] = oe
         if self.virtual_rows.size:
             v = self.virtual_rows
             self.servo_on[v] = self.servo_req[v]
-            self.drv[v] = np.where(self.servo_on[v], _B["ServoOn"] | _B["CSP"], 0) | _B["Ready"] | _B["MainPower"]
+            self.drv[v] = np.where(self.servo_on[v], _VIRTUAL_ON, _VIRTUAL_OFF)
         for i in np.flatnonzero(self.servo_on != prev_on):
             self.axes[i].on_servo_changed(bool(self.servo_on[i]))
         # Servo OFF: the command position reads the actual position (manual §2.3, Cmd.Pos).
@@ -225,11 +242,10 @@ class MotionModule:
             rows, sl = self.bus_rows, self.bus_slaves
             count = np.rint(self.cmd_pos[rows] * self.ppu[rows]).astype(np.int64)
             rx["target_position"][sl] = count.astype(np.int32)
-            sw = self.network.tx["statusword"][sl].astype(np.uint32)  # type: ignore[union-attr]
-            req = self.servo_req[rows]
-            cw = np.full(rows.size, CW_SHUTDOWN, dtype=np.uint16)
-            cw[req & ((sw & 0x6F) == 0x21)] = CW_SWITCH_ON
-            cw[req & (((sw & 0x6F) == 0x23) | ((sw & 0x6F) == 0x27))] = CW_ENABLE
+            sw = self.network.tx["statusword"][sl] & 0x6F  # type: ignore[union-attr]
+            # servo ON: Shutdown → Switch on → Enable operation as the drive reports each state; OFF: Shutdown
+            cw = _CW_FOR_STATE[sw] * self.servo_req[rows]
+            cw[cw == 0] = CW_SHUTDOWN
             rx["controlword"][sl] = cw
             rx["modes_of_operation"][sl] = 8
         if self.virtual_rows.size:
