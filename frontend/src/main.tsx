@@ -26,7 +26,8 @@ if (!root) throw new Error("#root missing from index.html");
 createRoot(root).render(
   <StrictMode>
     <MantineProvider theme={theme} defaultColorScheme="light" forceColorScheme="light">
-      <Notifications position="top-right" limit={5} zIndex={1000} />
+      {/* Bottom left: never over the toolbar or the Stop/Reset buttons of the test-run tab. */}
+      <Notifications position="bottom-left" limit={4} zIndex={1000} containerWidth={380} />
       <App />
     </MantineProvider>
   </StrictMode>,

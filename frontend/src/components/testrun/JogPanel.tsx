@@ -1,0 +1,71 @@
+import { Group, Text } from "@mantine/core";
+import { IconArrowLeft, IconArrowRight } from "@tabler/icons-react";
+import { useAxisCommands, useFb } from "../../hooks/useLive";
+import type { AxisUnits } from "../../lib/format";
+import { notifyError } from "../../lib/notify";
+import { type JogDir, jogPress, jogRelease } from "../../store/commands";
+import { axisForms, num, setFormField, useAxisForms } from "../../store/forms";
+import { Led } from "../common/Led";
+import { NumField } from "../common/NumField";
+import { Panel } from "../common/Panel";
+import { HoldButton } from "./HoldButton";
+
+function JogStatus({ id }: { id: number | null }) {
+  const fb = useFb(id);
+  if (!fb) return null;
+  const o = fb.outputs;
+  return (
+    <Group gap={10} wrap="nowrap" data-testid="jog-status">
+      <Led label="Busy" on={o.Busy === true} color="blue" />
+      <Led label="Error" on={o.Error === true} color="red" />
+      {o.Error === true && (
+        <Text size="xs" c="red" className="num">
+          {String(o.ErrorID)}
+        </Text>
+      )}
+    </Group>
+  );
+}
+
+/** MC_MoveJog with a dead-man lease: hold − / + to jog. */
+export function JogPanel({ axis, units }: { axis: string; units: AxisUnits }) {
+  const f = useAxisForms(axis);
+  const cmds = useAxisCommands(axis);
+
+  const press = (dir: JogDir) => {
+    const forms = axisForms(axis);
+    const v = num(forms.jogVelocity);
+    const a = num(forms.jogAcceleration);
+    if (v === null || a === null) {
+      notifyError("Jog", new Error("enter numbers for the jog velocity and acceleration"));
+      return;
+    }
+    jogPress(axis, dir, v, a);
+  };
+  const release = () => jogRelease(axis);
+
+  return (
+    <Panel
+      title="Jog (MC_MoveJog, hold to move)"
+      right={<JogStatus id={cmds.jogId} />}
+      testId="jog-panel"
+    >
+      <Group gap={8} align="flex-end" wrap="nowrap">
+        <NumField label="Velocity" unit={units.vel} value={f.jogVelocity} testId="jog-velocity"
+          onChange={(v) => setFormField(axis, "jogVelocity", v)} w={130} />
+        <NumField label="Acc./deceleration" unit={units.acc} value={f.jogAcceleration} testId="jog-acceleration"
+          onChange={(v) => setFormField(axis, "jogAcceleration", v)} w={140} />
+        <Group gap={6} wrap="nowrap" ml="auto">
+          <HoldButton testId="jog-minus" label="Jog in negative direction (hold)" held={cmds.jogHeld === "minus"}
+            onPress={() => press("minus")} onRelease={release} leftSection={<IconArrowLeft size={14} />}>
+            Jog −
+          </HoldButton>
+          <HoldButton testId="jog-plus" label="Jog in positive direction (hold)" held={cmds.jogHeld === "plus"}
+            onPress={() => press("plus")} onRelease={release} leftSection={<IconArrowRight size={14} />}>
+            Jog +
+          </HoldButton>
+        </Group>
+      </Group>
+    </Panel>
+  );
+}

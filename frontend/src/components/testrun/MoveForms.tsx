@@ -1,0 +1,168 @@
+import { Box, Button, NativeSelect, Text } from "@mantine/core";
+import { IconPlayerPlay } from "@tabler/icons-react";
+import { type FormEvent, Fragment, useState } from "react";
+import type { AxisUnits } from "../../lib/format";
+import { notifyError } from "../../lib/notify";
+import { issue } from "../../store/commands";
+import { type AxisForms, type NumValue, axisForms, num, setFormField, useAxisForms } from "../../store/forms";
+import { NumField } from "../common/NumField";
+import { Panel } from "../common/Panel";
+
+type NumKey = { [K in keyof AxisForms]: AxisForms[K] extends NumValue ? K : never }[keyof AxisForms];
+
+interface FieldDef {
+  key: NumKey;
+  /** Input variable of the instruction */
+  input: string;
+  testId: string;
+  unit: keyof AxisUnits;
+}
+
+interface MoveDef {
+  title: string;
+  type: string;
+  executeTestId: string;
+  /** Five columns: Position/Distance (or the direction select), Velocity, Acceleration, Deceleration, Jerk. */
+  fields: (FieldDef | "direction" | null)[];
+  extra?: (forms: AxisForms) => Record<string, unknown>;
+}
+
+const MOVES: MoveDef[] = [
+  {
+    title: "Absolute",
+    type: "MC_MoveAbsolute",
+    executeTestId: "abs-execute",
+    fields: [
+      { key: "absPosition", input: "Position", testId: "abs-position", unit: "pos" },
+      { key: "absVelocity", input: "Velocity", testId: "abs-velocity", unit: "vel" },
+      { key: "absAcceleration", input: "Acceleration", testId: "abs-acceleration", unit: "acc" },
+      { key: "absDeceleration", input: "Deceleration", testId: "abs-deceleration", unit: "acc" },
+      { key: "absJerk", input: "Jerk", testId: "abs-jerk", unit: "jerk" },
+    ],
+  },
+  {
+    title: "Relative",
+    type: "MC_MoveRelative",
+    executeTestId: "rel-execute",
+    fields: [
+      { key: "relDistance", input: "Distance", testId: "rel-distance", unit: "pos" },
+      { key: "relVelocity", input: "Velocity", testId: "rel-velocity", unit: "vel" },
+      { key: "relAcceleration", input: "Acceleration", testId: "rel-acceleration", unit: "acc" },
+      { key: "relDeceleration", input: "Deceleration", testId: "rel-deceleration", unit: "acc" },
+      { key: "relJerk", input: "Jerk", testId: "rel-jerk", unit: "jerk" },
+    ],
+  },
+  {
+    title: "Velocity",
+    type: "MC_MoveVelocity",
+    executeTestId: "vel-execute",
+    fields: [
+      "direction",
+      { key: "velVelocity", input: "Velocity", testId: "vel-velocity", unit: "vel" },
+      { key: "velAcceleration", input: "Acceleration", testId: "vel-acceleration", unit: "acc" },
+      { key: "velDeceleration", input: "Deceleration", testId: "vel-deceleration", unit: "acc" },
+      null,
+    ],
+    extra: (forms) => ({ Direction: forms.velDirection }),
+  },
+];
+
+const COLUMNS = ["Position / dist.", "Velocity", "Acceleration", "Deceleration", "Jerk"];
+
+const DIRECTIONS = [
+  { value: "_mcPositiveDirection", label: "Positive" },
+  { value: "_mcNegativeDirection", label: "Negative" },
+  { value: "_mcCurrentDirection", label: "Current" },
+];
+
+function MoveRow({ axis, units, def }: { axis: string; units: AxisUnits; def: MoveDef }) {
+  const f = useAxisForms(axis);
+  const [busy, setBusy] = useState(false);
+
+  const submit = async (e: FormEvent) => {
+    e.preventDefault();
+    // Read the values at submit time (not from the render): a value typed just before clicking counts.
+    const forms = axisForms(axis);
+    const inputs: Record<string, unknown> = {};
+    for (const fd of def.fields) {
+      if (fd === null || fd === "direction") continue;
+      const v = num(forms[fd.key]);
+      if (v === null) {
+        notifyError(def.type, new Error(`${fd.input}: enter a number`));
+        return;
+      }
+      inputs[fd.input] = v;
+    }
+    Object.assign(inputs, def.extra?.(forms));
+    setBusy(true);
+    await issue(axis, def.type, inputs);
+    setBusy(false);
+  };
+
+  return (
+    <form onSubmit={(e) => void submit(e)} noValidate style={{ display: "contents" }} data-testid={`${def.executeTestId.split("-")[0]}-form`}>
+      <Text size="xs" fw={600} title={def.type} style={{ alignSelf: "center" }}>
+        {def.title}
+      </Text>
+      {def.fields.map((fd, i) => {
+        if (fd === null) return <Box key={i} />;
+        if (fd === "direction") {
+          return (
+            <NativeSelect
+              key={i}
+              aria-label="Direction"
+              data={DIRECTIONS}
+              value={f.velDirection}
+              onChange={(e) => setFormField(axis, "velDirection", e.currentTarget.value)}
+              data-testid="vel-direction"
+            />
+          );
+        }
+        return (
+          <NumField
+            key={fd.key}
+            ariaLabel={`${def.title} move ${fd.input}`}
+            unit={units[fd.unit]}
+            value={f[fd.key]}
+            testId={fd.testId}
+            onChange={(v) => setFormField(axis, fd.key, v)}
+          />
+        );
+      })}
+      <Button type="submit" data-testid={def.executeTestId} leftSection={<IconPlayerPlay size={12} />} loading={busy}
+        px={10}>
+        Execute
+      </Button>
+    </form>
+  );
+}
+
+/** Absolute, relative and velocity moves: each Execute creates a new instance with Execute TRUE. */
+export function MoveForms({ axis, units }: { axis: string; units: AxisUnits }) {
+  return (
+    <Panel title="Positioning (MC_MoveAbsolute, MC_MoveRelative, MC_MoveVelocity)" testId="move-panel">
+      <Box
+        style={{
+          display: "grid",
+          gridTemplateColumns: "58px repeat(5, minmax(0, 1fr)) auto",
+          columnGap: 6,
+          rowGap: 6,
+          alignItems: "center",
+        }}
+      >
+        <Box />
+        {COLUMNS.map((c) => (
+          <Text key={c} size="11px" c="gray.7" truncate="end" title={c}>
+            {c}
+          </Text>
+        ))}
+        <Box />
+        {MOVES.map((m) => (
+          <Fragment key={m.type}>
+            <MoveRow axis={axis} units={units} def={m} />
+          </Fragment>
+        ))}
+      </Box>
+    </Panel>
+  );
+}

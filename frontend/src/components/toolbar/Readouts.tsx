@@ -1,0 +1,41 @@
+import { Group, Stack, Text } from "@mantine/core";
+import type { ReactNode } from "react";
+import { useLive } from "../../hooks/useLive";
+import { fixed } from "../../lib/format";
+
+function Readout({ label, children, testId, w }: { label: string; children: ReactNode; testId: string; w: number }) {
+  return (
+    <Stack gap={0} w={w} align="flex-end">
+      <Text size="10px" c="dimmed" tt="uppercase" lh={1.2} style={{ letterSpacing: "0.04em" }}>
+        {label}
+      </Text>
+      <Text size="sm" className="num" lh={1.25} data-testid={testId}>
+        {children}
+      </Text>
+    </Stack>
+  );
+}
+
+/** Live controller read-outs; each subscribes to one number so the rest of the header does not re-render. */
+export function Readouts() {
+  const cycle = useLive((s) => s.controller?.cycle ?? null);
+  const time = useLive((s) => s.controller?.time_s ?? null);
+  const rtf = useLive((s) => s.controller?.rtf ?? null);
+  const overruns = useLive((s) => s.controller?.overruns ?? null);
+  return (
+    <Group gap="md" wrap="nowrap">
+      <Readout label="Cycle" testId="cycle" w={78}>
+        {cycle ?? "—"}
+      </Readout>
+      <Readout label="Sim. time [s]" testId="sim-time" w={84}>
+        {fixed(time, 3)}
+      </Readout>
+      <Readout label="RTF" testId="rtf" w={44}>
+        {fixed(rtf, 2)}
+      </Readout>
+      <Readout label="Overruns" testId="overruns" w={58}>
+        {overruns ?? "—"}
+      </Readout>
+    </Group>
+  );
+}
