@@ -60,8 +60,8 @@ def _cmd_serve(args: argparse.Namespace) -> int:
     studio = Studio(runner=runner, project_dir=project_dir,
                     projects_root=Path(args.projects_root).resolve() if args.projects_root else project_dir.parent,
                     viz=viz)
-    runner.start()
     app = create_app(studio)
+    runner.start()  # after the imports and the app are built, so start-up work does not compete with the kernel
     print(f"MC Studio {__version__}: project '{project.name}' ({project_dir}), mode {args.mode}")
     print(f"  studio  http://{args.host}:{args.port}/")
     print(f"  API     http://{args.host}:{args.port}/docs")

@@ -25,12 +25,21 @@ class SceneServer:
         self._build_static()
 
     def _build_static(self) -> None:
-        scene = self.server.scene
-        with self.server.atomic():
+        server = self.server
+        scene = server.scene
+        server.gui.configure_theme(control_layout="collapsible", control_width="small", show_logo=False,
+                                   show_share_button=False, brand_color=(34, 139, 230))
+        cam = server.initial_camera
+        cam.up = (0.0, 0.0, 1.0)
+        cam.position = (1.1, -1.4, 0.9)
+        cam.look_at = (0.0, 0.0, 0.15)
+        with server.atomic():
             scene.set_up_direction("+z")
-            scene.add_grid("/floor", width=2.0, height=2.0, cell_size=0.1, section_size=0.5, plane="xy")
-            scene.add_frame("/machine", axes_length=0.25, axes_radius=0.008)
-            scene.add_label("/machine/label", "MCS", position=(0.0, 0.0, 0.3))
+            # metres; 10 cm cells, 50 cm sections, a 2 m × 2 m machine floor
+            scene.add_grid("/floor", width=2.0, height=2.0, cell_size=0.1, section_size=0.5, plane="xy",
+                           cell_color=(180, 180, 190), section_color=(110, 110, 125), section_thickness=1.5)
+            scene.add_frame("/machine", axes_length=0.3, axes_radius=0.01, origin_radius=0.02)
+            scene.add_label("/machine/label", "Machine coordinate system (MCS)", position=(0.0, 0.0, 0.36))
 
     def rebuild(self, controller: Controller) -> None:
         """Called when a new project is applied (the robot issue draws the configured mechanism)."""
