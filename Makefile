@@ -36,7 +36,8 @@ $(VENV)/.stamp: pyproject.toml
 
 # --- Frontend -------------------------------------------------------------------------------------------------
 frontend/node_modules/.stamp: frontend/package.json frontend/package-lock.json
-	cd frontend && npm ci --no-audit --no-fund
+	# npm ci refuses a lock written against a registry without every platform package; install honours the lock
+	cd frontend && npm install --no-audit --no-fund
 	@touch $@
 
 frontend/dist/index.html: frontend/node_modules/.stamp $(FRONTEND_SRC)
