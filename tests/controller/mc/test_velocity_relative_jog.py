@@ -158,3 +158,15 @@ def test_lease_expiry_stops_a_jog() -> None:
     step_until(c, jog, "Busy", False, limit=200)
     assert c.mc.cmd_vel[0] == 0.0
     assert c.mc.axes[0].state == AxisState.Standstill
+
+
+def test_current_direction_uses_the_last_motion(ctrl: Controller) -> None:
+    """_mcCurrentDirection on a stopped axis moves in the last direction of travel (MC_MoveVelocity rules)."""
+    power_on(ctrl)
+    mr = ctrl.fb("MC_MoveRelative", Axis="MC_Axis000", Execute=True, Distance=-5.0, Velocity=50.0,
+                 Acceleration=500.0, Deceleration=500.0)
+    step_until(ctrl, mr, "Done")
+    mv = ctrl.fb("MC_MoveVelocity", Axis="MC_Axis000", Execute=True, Velocity=10.0, Acceleration=100.0,
+                 Deceleration=100.0, Direction="_mcCurrentDirection")
+    step_until(ctrl, mv, "InVelocity")
+    assert ctrl.mc.cmd_vel[0] == pytest.approx(-10.0)

@@ -46,7 +46,6 @@ class Axis:
         self.obsr_code = 0
         self.reset_generation = 0  # increments each time the axis error is reset (releases FB Error outputs)
         self.homed = False
-        self.last_direction = 1  # +1 / −1: direction of the last motion (for _mcCurrentDirection)
         self.in_pos_waiting = False
 
     # ------------------------------------------------------------------ helpers
@@ -55,17 +54,17 @@ class Axis:
         return bool(self.m.servo_on[self.i])
 
     @property
+    def last_direction(self) -> int:
+        """+1 / −1: direction of the last command motion (for _mcCurrentDirection)."""
+        return int(self.m.last_dir[self.i])
+
+    @property
     def cmd_pos(self) -> float:
         return float(self.m.cmd_pos[self.i])
 
     @property
     def act_pos(self) -> float:
         return float(self.m.act_pos[self.i])
-
-    @property
-    def moving(self) -> bool:
-        i = self.i
-        return bool(self.m.prof_vel[i] != 0.0 or self.m.prof_acc[i] != 0.0)
 
     def _set_state(self, state: AxisState) -> None:
         self.state = state

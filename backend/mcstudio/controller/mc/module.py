@@ -85,6 +85,7 @@ class MotionModule:
         self.step_accdec = np.zeros(n, dtype=bool)  # running instruction has acc/dec 0 → Cmd.AccDec/Jerk read 0
         self.notify = np.zeros(n, dtype=bool)  # profile end not yet reported to the axis
         self.override = np.ones(n)
+        self.last_dir = np.ones(n, dtype=np.int8)  # direction of the last command motion (+1 after power-on)
         self.profiles = ProfileTable(n)
         self.planner = Planner(period_s)
         self._scheduled: dict[int, Axis] = {}  # jobs accepted (or changed) this period, planned in its motion stage
@@ -204,6 +205,9 @@ class MotionModule:
         self.cmd_jerk = jerk
         self.cmd_accdec = accdec
         self.cmd_vel = vel
+        moving = vel != 0.0
+        if moving.any():
+            self.last_dir[moving] = np.where(vel[moving] > 0, 1, -1)
         self.prev_cmd_pos[:] = self.cmd_pos
         # Push the MC module's status changes to the instances (Done, CommandAborted, InVelocity, Error) so they show
         # in the period the change happened, independent of program order. Active is read by the instance at its

@@ -273,7 +273,6 @@ class ExecuteFB(FunctionBlock):
     """Execute-type instruction with a motion job: Busy/Active/Done/CommandAborted/Error timing."""
 
     HAS_ACTIVE: ClassVar[bool] = True
-    REEXECUTABLE: ClassVar[bool] = False
 
     def __init__(self, mc: MotionModule, fb_id: int, inputs: dict[str, Any] | None = None) -> None:
         super().__init__(mc, fb_id, inputs)

@@ -163,7 +163,6 @@ class MC_Stop(ExecuteFB):
         outputs=(O_DONE, O_BUSY, O_ACTIVE, O_ABORTED, O_ERROR, O_ERRORID),
         spec="omron-axis-instructions.md MC_Stop (seed 000 line 5817)",
     )
-    REEXECUTABLE = True
 
     def __init__(self, mc: Any, fb_id: int, inputs: dict[str, Any] | None = None) -> None:
         super().__init__(mc, fb_id, inputs)
@@ -212,9 +211,60 @@ class MC_Stop(ExecuteFB):
             self._holding = None
 
 
+# --------------------------------------------------------------------------------------------------- motion base
+_REEXEC_LATCHED = (("Jerk", E.E_REEXEC_JERK), ("BufferMode", E.E_REEXEC_BUFFER_MODE),
+                   ("Direction", E.E_REEXEC_DIRECTION))
+
+
+class _MotionFB(ExecuteFB):
+    """A motion instruction with a job: state check, input check, submit; re-execution with latched inputs whose
+    change is the manual's 5458/5454/5455 error (A-2.3)."""
+
+    KIND: JobKind
+
+    def _check(self, axis: Axis) -> int:
+        raise NotImplementedError
+
+    def _fill(self, job: Job, axis: Axis) -> None:
+        raise NotImplementedError
+
+    def execute(self, axis: Axis) -> None:
+        verdict, code = axis.check_start()
+        if verdict == "abort":
+            self._finish("CommandAborted")
+            return
+        code = self._check(axis) or code  # D2: input errors before state errors
+        if code:
+            self.fail(code, axis)
+            return
+        i = self.inp
+        job = Job(self.KIND, self, buffer_mode=i["BufferMode"], direction=i.get("Direction", 0))
+        job.info["latched"] = {k: i[k] for k, _ in _REEXEC_LATCHED if k in i}
+        self._fill(job, axis)
+        self._submit(axis, job, "ok", 0)
+
+    def reexecute(self, axis: Axis) -> None:
+        job = self.job
+        if job is None:
+            return
+        latched = job.info["latched"]
+        for name, code in _REEXEC_LATCHED:
+            if name in latched and self.inp[name] != latched[name]:
+                self.fail(code, axis)
+                return
+        code = self._check(axis)
+        if code:
+            self.fail(code, axis)
+            return
+        self._fill(job, axis)
+        if "InVelocity" in self.out:
+            self.out["InVelocity"] = False
+        axis.replan(job)
+
+
 # --------------------------------------------------------------------------------------------------- positioning
-class _PositionFB(ExecuteFB):
-    REEXECUTABLE = True
+class _PositionFB(_MotionFB):
+    KIND = JobKind.POSITION
     RELATIVE = False
 
     def _target_inputs(self, axis: Axis) -> tuple[int, float]:
@@ -250,39 +300,6 @@ class _PositionFB(ExecuteFB):
                 job.target = job.origin + value  # re-execution measures from the original start
         else:
             job.target = value
-
-    def execute(self, axis: Axis) -> None:
-        verdict, code = axis.check_start()
-        if verdict == "abort":
-            self._finish("CommandAborted")
-            return
-        code = self._check(axis) or code
-        if code:
-            self.fail(code, axis)
-            return
-        i = self.inp
-        job = Job(JobKind.POSITION, self, buffer_mode=i["BufferMode"], direction=i.get("Direction", 0))
-        job.info["latched"] = {k: i[k] for k in ("Jerk", "BufferMode", "Direction") if k in i}
-        self._fill(job, axis)
-        self._submit(axis, job, "ok", 0)
-
-    def reexecute(self, axis: Axis) -> None:
-        job = self.job
-        if job is None:
-            return
-        latched = job.info.get("latched", {})
-        i = self.inp
-        for name, code in (("Jerk", E.E_REEXEC_JERK), ("BufferMode", E.E_REEXEC_BUFFER_MODE),
-                           ("Direction", E.E_REEXEC_DIRECTION)):
-            if name in latched and i[name] != latched[name]:
-                self.fail(code, axis)
-                return
-        code = self._check(axis)
-        if code:
-            self.fail(code, axis)
-            return
-        self._fill(job, axis)
-        axis.replan(job)
 
 
 class MC_MoveAbsolute(_PositionFB):
@@ -348,7 +365,7 @@ class MC_MoveRelative(_PositionFB):
 
 
 # --------------------------------------------------------------------------------------------------- MC_MoveVelocity
-class MC_MoveVelocity(ExecuteFB):
+class MC_MoveVelocity(_MotionFB):
     DEF = FBDef(
         name="MC_MoveVelocity",
         title="Velocity control",
@@ -377,9 +394,9 @@ class MC_MoveVelocity(ExecuteFB):
         status="partial",
         notes="Override arrives with the single-axis conformance issue.",
     )
-    REEXECUTABLE = True
+    KIND = JobKind.VELOCITY
 
-    def _check(self) -> int:
+    def _check(self, axis: Axis) -> int:
         i = self.inp
         if not i["Velocity"] >= 0:
             return E.E_VELOCITY
@@ -413,40 +430,6 @@ class MC_MoveVelocity(ExecuteFB):
         job.jerk = i["Jerk"]
         job.velocity = self._signed_velocity(axis)
 
-    def execute(self, axis: Axis) -> None:
-        verdict, code = axis.check_start()
-        if verdict == "abort":
-            self._finish("CommandAborted")
-            return
-        code = self._check() or code
-        if code:
-            self.fail(code, axis)
-            return
-        i = self.inp
-        job = Job(JobKind.VELOCITY, self, buffer_mode=i["BufferMode"], direction=i["Direction"])
-        job.info["latched"] = {k: i[k] for k in ("Jerk", "BufferMode", "Direction")}
-        self._fill(job, axis)
-        self._submit(axis, job, "ok", 0)
-
-    def reexecute(self, axis: Axis) -> None:
-        job = self.job
-        if job is None:
-            return
-        latched = job.info["latched"]
-        i = self.inp
-        for name, code in (("Jerk", E.E_REEXEC_JERK), ("BufferMode", E.E_REEXEC_BUFFER_MODE),
-                           ("Direction", E.E_REEXEC_DIRECTION)):
-            if i[name] != latched[name]:
-                self.fail(code, axis)
-                return
-        code = self._check()
-        if code:
-            self.fail(code, axis)
-            return
-        self._fill(job, axis)
-        self.out["InVelocity"] = False
-        axis.replan(job)
-
 
 # --------------------------------------------------------------------------------------------------- MC_MoveJog
 class MC_MoveJog(FunctionBlock):
@@ -476,7 +459,7 @@ class MC_MoveJog(FunctionBlock):
         self.job: Job | None = None
         self.axis: Axis | None = None
 
-    def _check(self) -> int:
+    def _check_inputs(self) -> int:
         i = self.inp
         if not i["Velocity"] >= 0:
             return E.E_VELOCITY
@@ -526,7 +509,7 @@ class MC_MoveJog(FunctionBlock):
         job = self.job
         if job is not None and self.axis is not None:
             # same instance, still busy: re-accelerate or reverse with the inputs latched now
-            code = self._check()
+            code = self._check_inputs()
             if code:
                 self._fail_running(code)
                 return
@@ -551,7 +534,7 @@ class MC_MoveJog(FunctionBlock):
             o["CommandAborted"] = True
             self._aborted_cycle = self.mc.cycle
             return
-        code = self._check() or code
+        code = self._check_inputs() or code
         if code:
             self.fail(code, axis)
             return
