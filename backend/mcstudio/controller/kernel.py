@@ -21,13 +21,36 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..drives.cia402 import SensorLayout
 from ..fieldbus.network import Network
-from ..project.models import Project
+from ..project.models import AxisConfig, Project
 from .events import EventLog
 from .mc.enums import _eMC_AXIS_TYPE
 from .mc.fb.base import FBInputError, FunctionBlock
 from .mc.fb.registry import FB_TYPES
 from .mc.module import MotionModule
+from .mc.units import pulses_per_unit
+
+
+def sensor_layout(axes: list[AxisConfig]) -> SensorLayout:
+    """Sensor positions of the simulated mechanism behind each slave, from command units to motor pulses (the
+    mechanism's frame: pulses = units × pulses-per-unit at the power-on coordinate system)."""
+    layout = SensorLayout(len(axes))
+    for k, a in enumerate(axes):
+        s = a.sensors
+        ppu = pulses_per_unit(a.parameters)
+        if s.PositiveLimit is not None:
+            layout.pos_limit[k] = s.PositiveLimit * ppu
+        if s.NegativeLimit is not None:
+            layout.neg_limit[k] = s.NegativeLimit * ppu
+        for zone, lo, hi in ((layout.prox, s.HomeProximityStart, s.HomeProximityEnd),
+                             (layout.ext1, s.ExternalHomeStart, s.ExternalHomeEnd),
+                             (layout.ext2, s.Latch2Start, s.Latch2End)):
+            if lo is not None and hi is not None:
+                zone[k] = sorted((lo * ppu, hi * ppu))
+        layout.z_offset[k] = float(s.ZPhaseOffset)
+        layout.z_period[k] = float(a.parameters.UnitConversion.CmdPlsCountPerMotorRotation)
+    return layout
 
 
 class KernelError(Exception):
@@ -86,11 +109,11 @@ class Controller:
         self.events = EventLog()
         real = [
             a for a in project.axes
-            if a.use.name == "_mcUsedAxis" and a.type in (_eMC_AXIS_TYPE._mcServo, _eMC_AXIS_TYPE._mcEncdr)
-            and a.node_address is not None
+            if a.type in (_eMC_AXIS_TYPE._mcServo, _eMC_AXIS_TYPE._mcEncdr) and a.node_address is not None
         ]
         real.sort(key=lambda a: a.node_address or 0)
-        self.network = Network([a.node_address for a in real], [f"Node{a.node_address} ({a.name})" for a in real])  # type: ignore[misc]
+        self.network = Network([a.node_address for a in real], [f"Node{a.node_address} ({a.name})" for a in real],  # type: ignore[misc]
+                               sensors=sensor_layout(real), period_s=self.period_s)
         self.mc = MotionModule(project, period_s=self.period_s, events=self.events, network=self.network)
         self.cycle = 0
         self.program: dict[int, ProgramEntry] = {}

@@ -11,6 +11,8 @@ the EtherCAT issue adds CSV/CST/homing, touch probe, limits and faults.
 from __future__ import annotations
 
 import enum
+import math
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -92,11 +94,95 @@ def decode_command(cw: np.ndarray) -> np.ndarray:
     return _CMD_OF_LOW_BITS[cw & 0x000F]
 
 
-class Cia402Drives:
-    """N CiA402 servo drives in cyclic synchronous position mode, one row per drive."""
+# 60FDh digital inputs: CiA402 bits 0–2; vendor bits for the external latch inputs (MC Studio layout)
+DI_NEGATIVE_LIMIT = 1 << 0
+DI_POSITIVE_LIMIT = 1 << 1
+DI_HOME_SWITCH = 1 << 2
+DI_EXT1 = 1 << 16
+DI_EXT2 = 1 << 17
 
-    def __init__(self, n: int) -> None:
+# 60B8h touch probe function / 60B9h touch probe status (CiA402)
+TP1_ENABLE = 0x0001
+TP1_CONTINUOUS = 0x0002
+TP1_SOURCE_Z = 0x0004  # bits 2–3 = 01: zero impulse of the encoder; 00: touch probe input 1 (EXT1)
+TP1_POS_EDGE = 0x0010
+TP2_ENABLE = 0x0100
+TP2_CONTINUOUS = 0x0200
+TP2_SOURCE_Z = 0x0400
+TP2_POS_EDGE = 0x1000
+TS1_ENABLED = 0x0001
+TS1_STORED = 0x0002
+TS2_ENABLED = 0x0100
+TS2_STORED = 0x0200
+
+
+@dataclass
+class SensorLayout:
+    """Sensor positions of the mechanism behind each drive, in motor pulses (nan/inf when not fitted)."""
+
+    n: int
+    pos_limit: np.ndarray = field(init=False)
+    neg_limit: np.ndarray = field(init=False)
+    prox: np.ndarray = field(init=False)  # (n, 2) zone
+    ext1: np.ndarray = field(init=False)
+    ext2: np.ndarray = field(init=False)
+    z_offset: np.ndarray = field(init=False)
+    z_period: np.ndarray = field(init=False)
+
+    def __post_init__(self) -> None:
+        n = self.n
+        self.pos_limit = np.full(n, np.inf)
+        self.neg_limit = np.full(n, -np.inf)
+        self.prox = np.full((n, 2), np.nan)
+        self.ext1 = np.full((n, 2), np.nan)
+        self.ext2 = np.full((n, 2), np.nan)
+        self.z_offset = np.zeros(n)
+        self.z_period = np.full(n, np.inf)
+
+
+def _in_zone(p: np.ndarray, zone: np.ndarray) -> np.ndarray:
+    with np.errstate(invalid="ignore"):
+        return (p >= zone[:, 0]) & (p <= zone[:, 1])
+
+
+def _zone_edge(p0: float, p1: float, lo: float, hi: float) -> float | None:
+    """Position of the first OFF→ON edge of the zone [lo, hi] on the way p0 → p1 (exact, not sampled)."""
+    if math.isnan(lo) or p0 == p1:
+        return None
+    inside0 = lo <= p0 <= hi
+    if inside0:
+        return None
+    if p1 > p0 and p0 < lo <= p1:
+        return lo
+    if p1 < p0 and p0 > hi >= p1:
+        return hi
+    return None
+
+
+def _z_edge(p0: float, p1: float, offset: float, period: float) -> float | None:
+    if not math.isfinite(period) or p0 == p1:
+        return None
+    if p1 > p0:
+        k = math.floor((p0 - offset) / period) + 1
+        z = offset + k * period
+        return z if z <= p1 else None
+    k = math.ceil((p0 - offset) / period) - 1
+    z = offset + k * period
+    return z if z >= p1 else None
+
+
+class Cia402Drives:
+    """N CiA402 servo drives in cyclic synchronous position mode, one row per drive, with the sensors wired to them
+    (limit switches, home proximity, external latch inputs, encoder Z phase) and the touch-probe function."""
+
+    def __init__(self, n: int, sensors: SensorLayout | None = None) -> None:
         self.n = n
+        self.sensors = sensors if sensors is not None else SensorLayout(n)
+        self.digital_inputs = np.zeros(n, dtype=np.uint32)
+        self.probe_status = np.zeros(n, dtype=np.uint16)
+        self.probe_pos1 = np.zeros(n, dtype=np.int64)
+        self.probe_pos2 = np.zeros(n, dtype=np.int64)
+        self._prev_tp = np.zeros(n, dtype=np.uint16)
         # A drive has finished its self-test (NotReadyToSwitchOn) by the time the network reaches Operational.
         self.state = np.full(n, PDS.SwitchOnDisabled, dtype=np.int8)
         self.main_power = np.ones(n, dtype=bool)
@@ -118,6 +204,48 @@ class Cia402Drives:
             nxt[fault_reset & (self.state == _FAULT)] = _SOD
         self.state[:] = nxt
         self.mode_display[:] = np.where(mode_of_operation != 0, mode_of_operation, self.mode_display)
+
+    def sense(self, previous: np.ndarray, probe_function: np.ndarray) -> None:
+        """Inputs after the mechanism moved from `previous` to `position`: 60FDh bits and touch-probe latches."""
+        p = self.position.astype(float)
+        s = self.sensors
+        di = np.where(p >= s.pos_limit, DI_POSITIVE_LIMIT, 0) | np.where(p <= s.neg_limit, DI_NEGATIVE_LIMIT, 0)
+        di |= np.where(_in_zone(p, s.prox), DI_HOME_SWITCH, 0)
+        di |= np.where(_in_zone(p, s.ext1), DI_EXT1, 0) | np.where(_in_zone(p, s.ext2), DI_EXT2, 0)
+        self.digital_inputs[:] = di
+        tp = probe_function
+        active = np.flatnonzero((tp | self._prev_tp) & (TP1_ENABLE | TP2_ENABLE))
+        for i in active:
+            self._probe(int(i), float(previous[i]), float(p[i]), int(tp[i]), int(self._prev_tp[i]))
+        self._prev_tp[:] = tp
+
+    def _probe(self, i: int, p0: float, p1: float, fn: int, prev: int) -> None:
+        """Touch probe 1 and 2 of drive i (first-event or continuous, positive edge, EXT input or Z phase)."""
+        st = int(self.probe_status[i])
+        s = self.sensors
+        for enable, cont, src_z, pos_edge, ts_en, ts_st, zone, slot in (
+            (TP1_ENABLE, TP1_CONTINUOUS, TP1_SOURCE_Z, TP1_POS_EDGE, TS1_ENABLED, TS1_STORED, s.ext1, 1),
+            (TP2_ENABLE, TP2_CONTINUOUS, TP2_SOURCE_Z, TP2_POS_EDGE, TS2_ENABLED, TS2_STORED, s.ext2, 2),
+        ):
+            if not fn & enable:
+                st &= ~(ts_en | ts_st)
+                continue
+            if not prev & enable or (fn & pos_edge and not prev & pos_edge):
+                st &= ~ts_st  # (re-)armed
+            st |= ts_en
+            if not fn & pos_edge or (st & ts_st and not fn & cont):
+                continue
+            if fn & src_z:
+                edge = _z_edge(p0, p1, float(s.z_offset[i]), float(s.z_period[i]))
+            else:
+                edge = _zone_edge(p0, p1, float(zone[i, 0]), float(zone[i, 1]))
+            if edge is not None:
+                st |= ts_st
+                if slot == 1:
+                    self.probe_pos1[i] = round(edge)
+                else:
+                    self.probe_pos2[i] = round(edge)
+        self.probe_status[i] = st
 
     @property
     def _all_powered(self) -> bool:

@@ -11,7 +11,7 @@ from __future__ import annotations
 import re
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from ..controller.mc.enums import (
     _eMC_ACCDECOVER,
@@ -170,6 +170,49 @@ class AxisParameters(_Strict):
     Homing: HomingSettings = Field(default_factory=HomingSettings)
 
 
+class ServoDriveSettings(_Strict):
+    """Sysmac Studio's axis settings outside `_sAXIS_PARAM` that the instructions need: the encoder type (position
+    count settings) and where the drive's inputs come from. Not readable or writable by MC_Read/WriteAxisParameter."""
+
+    EncoderType: Literal["incremental", "absolute"] = Field(
+        "incremental", description="Incremental: home undefined at power-on; absolute: home defined at servo ON"
+    )
+    AbsoluteEncoderHomeOffset: float = Field(0.0, description="Absolute encoder home offset [unit]")
+
+
+class SensorSettings(_Strict):
+    """The simulated mechanism's sensors, in command units of the initial coordinate system (null = not fitted).
+
+    They reach the MC module as drive inputs (60FDh bits, touch-probe latches), like wired sensors: the positive and
+    negative limit switches are ON beyond their positions, the home proximity dog and the external latch inputs
+    are ON inside their zones, and the encoder's Z phase pulses once per motor revolution."""
+
+    PositiveLimit: float | None = Field(None, description="Positive limit input (P_OT) ON at positions ≥ this [unit]")
+    NegativeLimit: float | None = Field(None, description="Negative limit input (N_OT) ON at positions ≤ this [unit]")
+    HomeProximityStart: float | None = Field(None, description="Home proximity dog: ON from here … [unit]")
+    HomeProximityEnd: float | None = Field(None, description="… to here [unit]")
+    ExternalHomeStart: float | None = Field(None, description="External home / latch input 1: ON from here … [unit]")
+    ExternalHomeEnd: float | None = Field(None, description="… to here [unit]")
+    Latch2Start: float | None = Field(None, description="External latch input 2: ON from here … [unit]")
+    Latch2End: float | None = Field(None, description="… to here [unit]")
+    ZPhaseOffset: int = Field(0, ge=0, le=UDINT_MAX, description="Encoder Z phase: one pulse per motor revolution, "
+                              "at this offset from motor position 0 [pulse]")
+
+    @model_validator(mode="after")
+    def _zones(self) -> SensorSettings:
+        for a, b in (("HomeProximityStart", "HomeProximityEnd"), ("ExternalHomeStart", "ExternalHomeEnd"),
+                     ("Latch2Start", "Latch2End")):
+            va, vb = getattr(self, a), getattr(self, b)
+            if (va is None) != (vb is None):
+                raise ValueError(f"{a} and {b} are set together (both numbers or both null)")
+            if va is not None and vb is not None and not va < vb:
+                raise ValueError(f"{a} must be less than {b}")
+        if self.PositiveLimit is not None and self.NegativeLimit is not None and \
+                not self.NegativeLimit < self.PositiveLimit:
+            raise ValueError("NegativeLimit must be less than PositiveLimit")
+        return self
+
+
 _IDENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]{0,62}$")
 
 
@@ -184,6 +227,8 @@ class AxisConfig(_Strict):
         None, ge=1, le=65534, description="EtherCAT node address of the drive/encoder slave; null for virtual axes"
     )
     parameters: AxisParameters = Field(default_factory=AxisParameters)
+    drive: ServoDriveSettings = Field(default_factory=ServoDriveSettings)
+    sensors: SensorSettings = Field(default_factory=SensorSettings)
 
     @field_validator("name")
     @classmethod

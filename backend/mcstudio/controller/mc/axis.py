@@ -1,8 +1,12 @@
 """One axis of the MC function module: its state machine, the instructions running on it, and `_sAXIS_REF`.
 
 Continuous quantities (command and actual values, profiles) live in the `MotionModule` arrays, one row per axis, so
-the control period can treat all axes at once; the discrete side (state, jobs, errors) lives here and changes only on
-events. State names and transitions follow `omron-mc-basics.md` §A-3 (A-3.4 table, A-3.8 acceptance).
+the control period treats all axes at once; the discrete side (state, jobs, errors) lives here and changes only on
+events. States and transitions follow `omron-mc-basics.md` §A-3; profiles are planned in `axis_planning.py`.
+
+Coordinates: internally positions are continuous ("unwrapped"); in Rotary Mode the axis reports them on the ring
+counter [ModuloMinPosVal, ModuloMaxPosVal). `pos_offset` maps the drive's pulse count to command units, so
+MC_SetPosition and the homing preset move the coordinate system without touching the drive.
 """
 
 from __future__ import annotations
@@ -10,21 +14,27 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from . import errors as E
-from .enums import AxisState, _eMC_AXIS_TYPE, _eMC_BUFFER_MODE
-from .jobs import Job, JobKind, JobStatus
+from .acceptance import verdict
+from .axis_planning import AxisPlanning
+from .enums import AxisState, _eMC_AXIS_TYPE, _eMC_BUFFER_MODE, _eMC_COUNT_MODE, _eMC_DIRECTION, _eMC_STOP_MODE
+from .jobs import MOTION_KINDS, Job, JobKind, JobStatus
 from .units import pulses_per_unit
 
 if TYPE_CHECKING:
-    from ...project.models import AxisConfig
+    from ...project.models import AxisConfig, AxisParameters
     from .module import MotionModule
 
 S = AxisState
+STOP_DECEL, STOP_IMMEDIATE, STOP_FE_RESET, STOP_FREE_RUN, STOP_NONE = "decel", "immediate", "fe_reset", "free", "none"
+_STOP_OF_MODE = {
+    int(_eMC_STOP_MODE._mcDecelerationStop): STOP_DECEL,
+    int(_eMC_STOP_MODE._mcImmediateStop): STOP_IMMEDIATE,
+    int(_eMC_STOP_MODE._mcImmediateStopFEReset): STOP_FE_RESET,
+    int(_eMC_STOP_MODE._mcFreeRunStop): STOP_FREE_RUN,
+}
 
-# Axis states in which a new positioning/velocity instruction is accepted (A-3.4 columns B–E).
-_MOVE_OK = {S.Standstill, S.Discrete, S.Continuous, S.Synchronized}
 
-
-class Axis:
+class Axis(AxisPlanning):
     def __init__(self, module: MotionModule, index: int, config: AxisConfig) -> None:
         self.m = module
         self.i = index
@@ -32,40 +42,106 @@ class Axis:
         self.name = config.name
         self.number = config.number
         self.type = config.type
-        self.params = config.parameters
-        self.ppu = pulses_per_unit(config.parameters)
+        self.used = config.use.name == "_mcUsedAxis"
         self.virtual = config.type in (_eMC_AXIS_TYPE._mcVirServo, _eMC_AXIS_TYPE._mcVirEncdr)
         self.encoder = config.type in (_eMC_AXIS_TYPE._mcEncdr, _eMC_AXIS_TYPE._mcVirEncdr)
+        self.params: AxisParameters = config.parameters.model_copy(deep=True)  # runtime copy (MC_Write …)
+        self.apply_parameters(self.params, initial=True)
         self.state = S.Disabled
         self.current: Job | None = None
         self.buffered: Job | None = None
         self.stop_holders: set[int] = set()  # ids of MC_Stop instances whose Execute is still TRUE
-        self.power_owner: int | None = None  # id of the MC_Power instance in control (later instance wins)
+        self.power_owner: int | None = None  # MC_Power instance in control (the later instance wins)
+        self.override_owner: int | None = None
         self.servo_request = False
         self.error_code = 0  # MFaultLvl.Code (0 = no minor fault)
-        self.obsr_code = 0
+        self.observations: dict[int, bool] = {}  # active observation codes (Obsr)
         self.reset_generation = 0  # increments each time the axis error is reset (releases FB Error outputs)
-        self.homed = False
+        self._homed = False
         self.in_pos_waiting = False
+        self.homing: Any = None  # the running Homing sequence (mc/homing.py)
+        self.latch_owner: dict[int, Any] = {}  # LatchID → instruction using the drive latch
 
-    # ------------------------------------------------------------------ helpers
+    # ------------------------------------------------------------------ configuration
+    def apply_parameters(self, params: AxisParameters, *, initial: bool = False) -> None:
+        """(Re)read the parameters the period uses: scale, count mode (MC_WriteAxisParameter, MC_Write)."""
+        self.params = params
+        self.ppu = pulses_per_unit(params)
+        pc = params.PosCount
+        self.rotary = pc.CountMode == _eMC_COUNT_MODE._mcCountModeRotary
+        self.mod_min = pc.ModuloMinPosVal
+        self.mod_max = pc.ModuloMaxPosVal
+        if not initial:
+            m, i = self.m, self.i
+            m.ppu[i] = self.ppu
+            m.rotary[i] = self.rotary
+            m.mod_min[i] = self.mod_min
+            m.mod_len[i] = self.mod_max - self.mod_min if self.rotary else 0.0
+            m.refresh_params(self)
+
+    # ------------------------------------------------------------------ coordinates
+    def wrap(self, x: float) -> float:
+        if not self.rotary:
+            return x
+        span = self.mod_max - self.mod_min
+        return self.mod_min + (x - self.mod_min) % span
+
+    @property
+    def homed(self) -> bool:
+        return self._homed
+
+    @homed.setter
+    def homed(self, value: bool) -> None:
+        self._homed = value
+        self.m.homed[self.i] = value
+
     @property
     def servo_on(self) -> bool:
         return bool(self.m.servo_on[self.i])
+
+    @property
+    def cmd_pos(self) -> float:
+        """Command current position as reported (wrapped in Rotary Mode)."""
+        return self.wrap(float(self.m.cmd_pos[self.i]))
+
+    @property
+    def act_pos(self) -> float:
+        return self.wrap(float(self.m.act_pos[self.i]))
 
     @property
     def last_direction(self) -> int:
         """+1 / −1: direction of the last command motion (for _mcCurrentDirection)."""
         return int(self.m.last_dir[self.i])
 
-    @property
-    def cmd_pos(self) -> float:
-        return float(self.m.cmd_pos[self.i])
+    def resolve_target(self, position: float, direction: int, base: float | None = None) -> tuple[int, float]:
+        """Absolute target → (error, internal target) by Count Mode and Direction (MC_MoveAbsolute rules), seen
+        from `base` (default: the command current position)."""
+        p = float(self.m.cmd_pos[self.i]) if base is None else base
+        if not self.rotary:
+            return 0, position
+        if direction == _eMC_DIRECTION._mcNoDirection:
+            # numeric comparison within the ring; beyond the limits = extra relative travel (multi-turn)
+            return 0, p + (position - self.wrap(p))
+        if not self.mod_min <= position <= self.mod_max:
+            return E.E_TARGET_POSITION, 0.0  # seed 000 line 3618: above the upper or below the lower limit
+        span = self.mod_max - self.mod_min
+        cur = self.wrap(p)
+        fwd = (position - cur) % span
+        back = (cur - position) % span
+        if fwd == 0.0:
+            return 0, p
+        if direction == _eMC_DIRECTION._mcShortestWay:
+            if fwd == back:
+                direction = _eMC_DIRECTION._mcCurrentDirection
+            else:
+                return 0, p + fwd if fwd < back else p - back
+        if direction == _eMC_DIRECTION._mcCurrentDirection:
+            v = float(self.m.prof_vel[self.i])
+            positive = v > 0 if v != 0 else self.last_direction > 0
+            return 0, p + fwd if positive else p - back
+        return 0, p + fwd if direction == _eMC_DIRECTION._mcPositiveDirection else p - back
 
-    @property
-    def act_pos(self) -> float:
-        return float(self.m.act_pos[self.i])
-
+    # ------------------------------------------------------------------ helpers
     def _set_state(self, state: AxisState) -> None:
         self.state = state
         self.m.state[self.i] = state
@@ -87,66 +163,111 @@ class Axis:
             self.current = None
         if job is self.buffered:
             self.buffered = None
+            cur = self.current
+            if cur is not None and cur.info.get("split_time") is not None and cur.running:
+                cur.replan = True  # the blending successor is gone: plan the move to stop at its own target
+                self.m.schedule(self)
+        if job.kind == JobKind.HOMING and self.homing is not None:
+            self.homing.close()
+            self.homing = None
 
     def abort_all(self) -> None:
         """Every instruction running or buffered on this axis gets CommandAborted."""
         self._end_job(self.buffered, JobStatus.ABORTED)
         self._end_job(self.current, JobStatus.ABORTED)
 
-    # ------------------------------------------------------------------ errors
-    def raise_error(self, code: int, *, source: str | None = None, stop: bool = True, detail: str = "") -> None:
-        """Axis minor fault: MFaultLvl, ErrorStop, running instructions aborted, deceleration stop (A-1 effect AX-D)."""
-        first = self.error_code == 0
-        if first:
+    def halt(self) -> None:
+        """Stop the command where it is (immediate stop): the profile ends, the command holds."""
+        m, i = self.m, self.i
+        m.profiles.clear(i)
+        m.prof_vel[i] = 0.0
+        m.prof_acc[i] = 0.0
+        self.in_pos_waiting = False
+
+    # ------------------------------------------------------------------ errors and observations
+    def raise_error(self, code: int, *, source: str | None = None, stop: str = STOP_DECEL, detail: str = "",
+                    stop_at: float | None = None, deceleration: float | None = None) -> None:
+        """Axis minor fault: MFaultLvl, ErrorStop, running instructions aborted and the axis stopped (A-1 effects).
+
+        `stop`: deceleration stop (at the axis Maximum Deceleration, or `deceleration`; immediate when 0), immediate
+        stop, immediate stop with following-error reset, free-run (servo OFF), or none. `stop_at`: decelerate to a
+        stop exactly at this position (command-position software limits)."""
+        if self.error_code == 0:
             self.error_code = code
         self.m.log_error(code, axis=self, source=source, detail=detail)
         self.abort_all()
         self.in_pos_waiting = False
         self._set_state(S.ErrorStop)
-        if stop and self.servo_on:
-            self._start_error_stop()
+        if not self.servo_on or stop == STOP_NONE:
+            return
+        if stop == STOP_IMMEDIATE:
+            self.halt()
+        elif stop == STOP_FE_RESET:
+            self.halt()
+            self.m.reset_following_error(self.i)
+        elif stop == STOP_FREE_RUN:
+            self.halt()
+            self._release_servo()
+        else:
+            dec = self.params.Operation.MaxDec if deceleration is None else deceleration
+            job = Job(JobKind.ERROR_STOP, None, deceleration=dec)
+            if stop_at is not None:
+                job.info["stop_at"] = stop_at
+            if dec <= 0 and stop_at is None:
+                self.halt()  # no limit set: immediate stop (decision D3)
+                return
+            self.current = job
+            self.m.schedule(self)
 
-    def _start_error_stop(self) -> None:
-        # Deceleration stop at the axis maximum deceleration; immediate stop when it is 0 (no limit) — decisions.md.
-        job = Job(JobKind.ERROR_STOP, None, deceleration=self.params.Operation.MaxDec)
-        self.current = job
-        self.m.schedule(self)
+    def set_observation(self, code: int, active: bool, detail: str = "") -> None:
+        """Observation level events (Obsr): warnings that do not stop the axis; cleared when the cause is gone."""
+        was = self.observations.get(code, False)
+        if active and not was:
+            self.observations[code] = True
+            self.m.log_error(code, axis=self, source=None, detail=detail)
+        elif not active and was:
+            del self.observations[code]
+
+    @property
+    def obsr_code(self) -> int:
+        return next(iter(self.observations), 0)
 
     # ------------------------------------------------------------------ MC_Power
     def power(self, fb_id: int, enable: bool, enable_changed: bool) -> None:
         if enable_changed or self.power_owner is None:
             self.power_owner = fb_id
-        if self.power_owner != fb_id:
+        if self.power_owner != fb_id or enable == self.servo_request:
             return
-        if enable == self.servo_request:
-            return
-        self.servo_request = enable
-        self.m.servo_req[self.i] = enable
-        if not enable:
-            # Releasing the ready state aborts the running instruction; the command output stops at once.
-            for job in (self.buffered, self.current):
-                if job is not None and job.kind == JobKind.STOP:
-                    self._end_job(job, JobStatus.DONE)
-            self.abort_all()
-            self.m.profiles.clear(self.i)
-            self.m.prof_vel[self.i] = 0.0
-            self.m.prof_acc[self.i] = 0.0
-            self.in_pos_waiting = False
+        if enable:
+            self.servo_request = True
+            self.m.servo_req[self.i] = True
+        else:
+            self._release_servo()
+
+    def _release_servo(self) -> None:
+        """Servo OFF: the running instruction is aborted and the command output stops at once."""
+        self.servo_request = False
+        self.m.servo_req[self.i] = False
+        for job in (self.buffered, self.current):
+            if job is not None and job.kind == JobKind.STOP:
+                self._end_job(job, JobStatus.DONE)  # MC_Stop is Done when the axis is turned OFF
+        self.abort_all()
+        self.halt()
 
     def on_servo_changed(self, on: bool) -> None:
         """Inputs stage: the drive reports a change of *Operation enabled*."""
+        if on and self.config.drive.EncoderType == "absolute" and not self.homed:
+            self.homed = True  # absolute encoder: home defined when the axis becomes ready (MC_Power rules)
         if self.state == S.ErrorStop:
             return  # ErrorStop dominates; MC_Reset decides the next state
         if on:
             self._set_state(self._rest_state())
         else:
             if self.servo_request and not self.virtual:
-                # The drive left Operation enabled on its own (fault, power loss): the EtherCAT issue maps drive
-                # errors to their codes; until then the axis is simply released.
-                self.servo_request = False
+                self.servo_request = False  # the drive left Operation enabled on its own
                 self.m.servo_req[self.i] = False
             self.abort_all()
-            self.m.profiles.clear(self.i)
+            self.halt()
             self._set_state(S.Disabled)
 
     # ------------------------------------------------------------------ MC_Reset
@@ -154,51 +275,46 @@ class Axis:
         """Reset the axis error. Returns False (Failure) while the axis is still decelerating from the error."""
         if self.state == S.ErrorStop and self.current is not None and self.current.kind == JobKind.ERROR_STOP:
             return False
-        if self.error_code or self.state == S.ErrorStop:
+        if self.error_code or self.state == S.ErrorStop or self.observations:
             self.error_code = 0
+            self.observations.clear()
             self.reset_generation += 1
             self._end_job(self.current, JobStatus.DONE)
             self._set_state(self._rest_state())
             self.m.log_info(self, f"axis error reset on {self.name}")
         return True
 
-    # ------------------------------------------------------------------ motion requests
-    def check_start(self, *, jog: bool = False) -> tuple[str, int]:
-        """Acceptance of a single-axis motion instruction in the current state (A-3.4/A-3.8).
-
-        Returns ("ok", 0), ("abort", 0) for CommandAborted without error, or ("error", code).
-        """
-        st = self.state
-        if st == S.ErrorStop or st == S.Stopping:
-            return "abort", 0
-        if self.encoder:
+    # ------------------------------------------------------------------ starting instructions
+    def check_start(self, kind: str = "move") -> tuple[str, int]:
+        """Acceptance in the current state (A-3.4/A-3.8, `acceptance.py`): ("ok"|"abort"|"error", code)."""
+        if self.encoder and kind not in ("admin", "latch"):
             return "error", E.E_AXIS_TYPE
-        if st == S.Disabled:
-            return "error", E.E_SERVO_OFF
-        if st == S.Coordinated:
-            return "error", 0x543E
-        if jog:
-            return ("ok", 0) if st == S.Standstill else ("error", E.E_MULTIEXEC_DISABLED)
-        if st in _MOVE_OK:
-            return "ok", 0
-        return "error", E.E_MULTIEXEC_DISABLED  # Homing
+        v = verdict(kind, self.state)
+        if v == "ok" or v == "abort":
+            return str(v), 0
+        return "error", int(v)
 
     def submit(self, job: Job) -> int:
         """Start or buffer `job` according to its BufferMode. Returns an ErrorID (0 = accepted)."""
         mode = job.buffer_mode
-        if mode == _eMC_BUFFER_MODE._mcAborting or self.current is None or self.current.kind in (
-            JobKind.STOP,
-            JobKind.ERROR_STOP,
-        ):
+        cur = self.current
+        if mode == _eMC_BUFFER_MODE._mcAborting or cur is None or cur.kind not in MOTION_KINDS:
             self.abort_all()
             self._start(job)
             return 0
-        # Buffered (and, until blending lands, the blending modes wait for Done as Buffered does)
         if self.buffered is not None:
             return E.E_BUFFER_LIMIT
+        blending = mode >= _eMC_BUFFER_MODE._mcBlendingLow
+        if blending and not (cur.blendable and job.blendable):
+            # Blending onto an instruction that does not accept it (MC_MoveVelocity, MC_MoveJog,
+            # MC_MoveZeroPosition, MC_MoveFeed): multi-execution disabled (decision D18)
+            return E.E_MULTIEXEC_DISABLED
         job.status = JobStatus.WAITING
         self.buffered = job
-        if self.current.kind in (JobKind.VELOCITY, JobKind.JOG) and self.current.in_velocity:
+        if blending:
+            cur.replan = True  # re-plan the running move to reach its target at the transit velocity
+            self.m.schedule(self)
+        elif cur.kind in (JobKind.VELOCITY, JobKind.JOG) and cur.in_velocity:
             self._promote_buffered()
         return 0
 
@@ -206,12 +322,16 @@ class Axis:
         job.status = JobStatus.STARTING
         self.current = job
         self.in_pos_waiting = False
-        if job.kind == JobKind.POSITION:
-            self._set_state(S.Discrete)
-        elif job.kind in (JobKind.VELOCITY, JobKind.JOG):
-            self._set_state(S.Continuous)
-        elif job.kind == JobKind.STOP:
-            self._set_state(S.Stopping)
+        state = {
+            JobKind.POSITION: S.Discrete,
+            JobKind.VELOCITY: S.Continuous,
+            JobKind.JOG: S.Continuous,
+            JobKind.STOP: S.Stopping,
+            JobKind.RESET_FE: S.Stopping,
+            JobKind.HOMING: S.Homing,
+        }.get(job.kind)
+        if state is not None:
+            self._set_state(state)
         self.m.schedule(self)
 
     def _promote_buffered(self) -> None:
@@ -228,6 +348,7 @@ class Axis:
         if job is self.current and job.status in (JobStatus.STARTING, JobStatus.ACTIVE):
             job.replan = True
             job.in_velocity = False
+            job.paused = False
             self.in_pos_waiting = False
             self.m.schedule(self)
 
@@ -237,9 +358,12 @@ class Axis:
             return "abort"
         if self.state == S.Disabled or not self.servo_on:
             return "done"
-        if self.current is not None and self.current.kind == JobKind.STOP:
-            # MC_Stop instances may multi-execute; the running one ends with Done (seed 000 line 5980, decisions.md)
-            self._end_job(self.current, JobStatus.DONE)
+        cur = self.current
+        if cur is not None and cur.kind == JobKind.STOP:
+            # MC_Stop instances may multi-execute; the running one ends with Done (seed 000 line 5980, D4)
+            self._end_job(cur, JobStatus.DONE)
+        elif cur is not None and cur.kind == JobKind.RESET_FE:
+            job.deceleration = 0.0  # MC_Stop during MC_ResetFollowingError stops immediately (MC_Stop rules)
         self.abort_all()
         self._start(job)
         return "ok"
@@ -260,50 +384,59 @@ class Axis:
             job.replan = True
             self.m.schedule(self)
 
-    # ------------------------------------------------------------------ motion stage callbacks
-    def on_planned(self, job: Job) -> None:
-        job.status = JobStatus.ACTIVE
-        job.replan = False
-        job.cmd_done_cycle = -1
+    def immediate_stop(self, stop_mode: int, source: str) -> None:
+        """MC_ImmediateStop: stop by StopMode and raise 5485 (the axis goes to ErrorStop)."""
+        self.raise_error(E.E_IMMEDIATE_STOP, source=source, stop=_STOP_OF_MODE.get(stop_mode, STOP_IMMEDIATE))
 
-    def on_profile_finished(self, job: Job) -> bool:
-        """The profile of the current job reached its tail (target position / target velocity / standstill).
+    def limit_input_stop_mode(self) -> str:
+        return _STOP_OF_MODE.get(int(self.params.OtherOperation.LimitInputStopMode), STOP_IMMEDIATE)
 
-        Returns True while the end is still pending and must be reported again next period. Ends are reported one
-        period after the profile reached them, when the command values the axis reports agree: Cmd.Vel (a difference
-        of positions) equals the target velocity (InVelocity) or 0, and the final command value has reached the
-        drive (positioning complete, stop complete). A positioning with an in-position check time also waits until
-        the actual position is inside the in-position range.
-        """
-        i = self.i
-        cycle = self.m.cycle
-        if job.cmd_done_cycle < 0:
-            job.cmd_done_cycle = cycle
-        if cycle <= job.cmd_done_cycle:
-            return True  # the final command value is sent in this period's outputs
-        if job.kind in (JobKind.VELOCITY, JobKind.JOG) and not job.stopping:
-            # InVelocity: Cmd.Vel (difference of positions) has reached the target velocity
-            if not job.in_velocity:
-                job.in_velocity = True
-                self.m.job_changed(job)
-                if self.buffered is not None:
-                    self._promote_buffered()
-            return False
-        if job.kind == JobKind.POSITION:
-            op = self.params.Operation
-            if op.InPosCheckTime > 0 and abs(float(self.m.act_pos[i]) - job.target) > op.InPosRange:
-                self.in_pos_waiting = True
-                return True
-            self.in_pos_waiting = False
-        self.m.profiles.clear(i)
-        self._end_job(job, JobStatus.DONE)
-        if job.kind == JobKind.ERROR_STOP:
-            return False
-        if job.kind == JobKind.POSITION and self.buffered is not None:
-            self._promote_buffered()
-        else:
-            self._set_state(self._rest_state())
-        return False
+    def set_override(self, fb_id: int, factor: float | None, changed: bool) -> None:
+        """MC_SetOverride: `factor` in % (None = Enable FALSE → 100 %); the later instance has priority."""
+        if changed and factor is not None:
+            self.override_owner = fb_id
+        if self.override_owner not in (None, fb_id):
+            return
+        if factor is None:
+            if self.override_owner == fb_id:
+                self.override_owner = None
+            factor = 100.0
+        value = factor / 100.0
+        m, i = self.m, self.i
+        if m.override[i] == value:
+            return
+        m.override[i] = value
+        cur = self.current
+        if cur is not None and cur.overridable and cur.status == JobStatus.ACTIVE and not cur.stopping:
+            cur.replan = True
+            cur.paused = False
+            self.m.schedule(self)
+
+    def set_position(self, position: float) -> None:
+        """MC_SetPosition: the command position becomes `position`, the actual keeps the following error; a running
+        MC_MoveAbsolute keeps its absolute target in the new coordinates, relative and velocity motion continue."""
+        m, i = self.m, self.i
+        delta = position - float(m.cmd_pos[i])
+        m.shift_coordinates(i, delta)
+        self.homed = False
+        for job in (self.current, self.buffered):
+            if job is None:
+                continue
+            if job.absolute_target is not None:
+                _, job.target = self.resolve_target(job.absolute_target, job.direction)
+                if job is self.current and job.status == JobStatus.ACTIVE:
+                    job.replan = True
+                    self.m.schedule(self)
+            else:
+                job.target += delta
+                if job.origin is not None:
+                    job.origin += delta
+
+    def define_home(self, position: float) -> None:
+        """Homing complete (or MC_HomeWithParameter mode 14): preset the command position, home defined."""
+        m, i = self.m, self.i
+        m.shift_coordinates(i, position - float(m.cmd_pos[i]))
+        self.homed = True
 
     # ------------------------------------------------------------------ _sAXIS_REF
     def capture(self) -> tuple[int, int, int, bool, bool, bool]:
@@ -341,7 +474,7 @@ def axis_variables(axis: Axis, discrete: tuple[int, int, int, bool, bool, bool],
         "Obsr": {"Active": obsr_code != 0, "Code": f"{obsr_code:04X}"},
         "Cfg": {
             "AxNo": axis.number,
-            "AxEnable": axis.config.use.name,
+            "AxEnable": "_mcUsedAxis" if axis.used else "_mcUnusedAxis",
             "AxType": axis.type.name,
             "NodeAddress": axis.config.node_address if axis.config.node_address is not None else 0xFFFF,
             "ExecID": 1,

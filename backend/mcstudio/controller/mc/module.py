@@ -2,7 +2,7 @@
 
 Data layout (settled for the performance issue): every continuous per-axis quantity is a numpy array indexed by the
 axis row, so a period costs a fixed number of vector operations plus Python work only for axes with an event (a new
-instruction, a finished profile, a servo change). `Axis` objects hold the discrete state machine.
+instruction, a profile end, a servo change, a supervision hit). `Axis` objects hold the discrete state machine.
 """
 
 from __future__ import annotations
@@ -11,10 +11,12 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ...drives.cia402 import DI_EXT1, DI_EXT2, DI_HOME_SWITCH, DI_NEGATIVE_LIMIT, DI_POSITIVE_LIMIT
 from . import errors as E
 from .axis import Axis
 from .jobs import JobKind, JobStatus
 from .profile import Planner, PlanningError, ProfileTable
+from .supervision import supervise
 
 if TYPE_CHECKING:
     from ...fieldbus.network import Network
@@ -63,12 +65,15 @@ class MotionModule:
         self.events = events
         self.network = network
         self.cycle = 0
-        used = [a for a in project.axes if a.use.name == "_mcUsedAxis"]
-        self.axes: list[Axis] = [Axis(self, i, cfg) for i, cfg in enumerate(used)]
+        self.axes: list[Axis] = [Axis(self, i, cfg) for i, cfg in enumerate(project.axes)]
         self.by_name: dict[str, Axis] = {a.name: a for a in self.axes}
         n = self.n = len(self.axes)
         self.ppu = np.array([a.ppu for a in self.axes], dtype=float)
-        self.cmd_pos = np.zeros(n)
+        self.rotary = np.array([a.rotary for a in self.axes], dtype=bool)
+        self.mod_min = np.array([a.mod_min for a in self.axes], dtype=float)
+        self.mod_len = np.array([a.mod_max - a.mod_min if a.rotary else 0.0 for a in self.axes], dtype=float)
+        self.pos_offset = np.zeros(n)  # command units: position = pulses / ppu + offset
+        self.cmd_pos = np.zeros(n)  # continuous (unwrapped) command position
         self.prof_vel = np.zeros(n)  # analytic profile velocity/acceleration: the state a re-plan starts from
         self.prof_acc = np.zeros(n)
         self.cmd_vel = np.zeros(n)  # Cmd.Vel: difference of command positions (manual §2.3)
@@ -82,7 +87,13 @@ class MotionModule:
         self.servo_req = np.zeros(n, dtype=bool)
         self.state = np.zeros(n, dtype=np.int8)
         self.drv = np.zeros(n, dtype=np.uint32)
+        self.din = np.zeros(n, dtype=np.uint32)  # 60FDh after the input logic inversion settings
+        self.tp_func = np.zeros(n, dtype=np.uint16)  # 60B8h written by the MC module (homing, touch probe)
+        self.tp_status = np.zeros(n, dtype=np.uint16)
+        self.tp_pos1 = np.zeros(n, dtype=np.int64)
+        self.tp_pos2 = np.zeros(n, dtype=np.int64)
         self.step_accdec = np.zeros(n, dtype=bool)  # running instruction has acc/dec 0 → Cmd.AccDec/Jerk read 0
+        self.stop_dec = np.zeros(n)  # deceleration a supervision stop uses (of the running instruction)
         self.notify = np.zeros(n, dtype=bool)  # profile end not yet reported to the axis
         self.override = np.ones(n)
         self.last_dir = np.ones(n, dtype=np.int8)  # direction of the last command motion (+1 after power-on)
@@ -90,6 +101,23 @@ class MotionModule:
         self.planner = Planner(period_s)
         self._scheduled: dict[int, Axis] = {}  # jobs accepted (or changed) this period, planned in its motion stage
         self.changed: list[Any] = []  # jobs whose status changed this period (their instances are refreshed)
+        self.homing_axes: dict[int, Axis] = {}
+        self._inv_mask = np.zeros(n, dtype=np.uint32)  # 60FDh bits whose logic is inverted (axis parameters)
+        # supervision parameters per axis (refreshed when parameters are written at run time)
+        self.sw_mode = np.zeros(n, dtype=np.int8)
+        self.posi_sw = np.full(n, np.inf)
+        self.nega_sw = np.full(n, -np.inf)
+        self.fe_over = np.zeros(n)
+        self.fe_warn = np.zeros(n)
+        self.vel_warn = np.zeros(n)
+        self.acc_warn = np.zeros(n)
+        self.dec_warn = np.zeros(n)
+        self.max_dec = np.zeros(n)
+        self.homed = np.zeros(n, dtype=bool)
+        self.fe_check = np.ones(n, dtype=bool)  # FALSE during the push phase of homing
+        self.limit_check = np.ones(n, dtype=bool)  # FALSE while homing handles the limit inputs itself
+        for a in self.axes:
+            self.refresh_params(a)
         # bus mapping: axes with a slave on the network
         rows, slaves = [], []
         if network is not None:
@@ -115,6 +143,52 @@ class MotionModule:
 
     def job_changed(self, job: Any) -> None:
         self.changed.append(job)
+
+    def refresh_params(self, axis: Axis) -> None:
+        """Copy the parameters the period checks into the supervision arrays."""
+        i, p = axis.i, axis.params
+        op, lim = p.Operation, p.Limit
+        self.sw_mode[i] = int(lim.SwLimitMode)
+        self.posi_sw[i] = lim.PosiSwLimit
+        self.nega_sw[i] = lim.NegaSwLimit
+        self.fe_over[i] = lim.FollowingErrorOverVal
+        self.fe_warn[i] = lim.FollowingErrorWarningVal
+        self.vel_warn[i] = op.MaxVel * op.VelWarningVal / 100.0
+        self.acc_warn[i] = op.MaxAcc * op.AccWarningVal / 100.0
+        self.dec_warn[i] = op.MaxDec * op.DecWarningVal / 100.0
+        self.max_dec[i] = op.MaxDec
+        self.set_input_inversion(axis)
+
+    def set_input_inversion(self, axis: Axis) -> None:
+        oo = axis.params.OtherOperation
+        mask = 0
+        mask |= DI_POSITIVE_LIMIT if oo.PosiLimitInputLogicInversion else 0
+        mask |= DI_NEGATIVE_LIMIT if oo.NegaLimitInputLogicInversion else 0
+        mask |= DI_HOME_SWITCH if oo.HomeProximityInputLogicInversion else 0
+        self._inv_mask[axis.i] = mask
+
+    def shift_coordinates(self, i: int, delta: float) -> None:
+        """Move axis i's coordinate system by `delta` (MC_SetPosition, home preset): command, actual and the running
+        profile shift together, so motion continues unchanged and the following error is kept."""
+        self.pos_offset[i] += delta
+        self.cmd_pos[i] += delta
+        self.prev_cmd_pos[i] += delta
+        self.act_pos[i] += delta
+        self.profiles.p[i] += delta
+
+    def reset_following_error(self, i: int) -> None:
+        """Command := actual (immediate stop with following-error reset)."""
+        self.cmd_pos[i] = self.act_pos[i]
+        self.prev_cmd_pos[i] = self.act_pos[i]
+
+    def wrapped(self, x: np.ndarray) -> np.ndarray:
+        """Positions as reported (a copy): on the ring counter for Rotary Mode axes."""
+        out = x.copy()
+        if not self.rotary.any():
+            return out
+        r = self.rotary
+        out[r] = self.mod_min[r] + np.mod(x[r] - self.mod_min[r], self.mod_len[r])
+        return out
 
     def log_error(self, code: int, *, axis: Axis | None, source: str | None, detail: str = "") -> None:
         d = E.describe(code)
@@ -147,14 +221,24 @@ class MotionModule:
             delta = (pos32 - self._prev_pos32 + 2**31) % 2**32 - 2**31
             self._prev_pos32 = pos32
             self.act_count[rows] += delta
-            new_act = self.act_count[rows] / self.ppu[rows]
+            new_act = self.act_count[rows] / self.ppu[rows] + self.pos_offset[rows]
             self.act_vel[rows] = (new_act - self.act_pos[rows]) / T
             self.act_pos[rows] = new_act
+            din = tx["digital_inputs"][sl] ^ self._inv_mask[rows]
+            self.din[rows] = din
             drv = _DRV_OF_SW[sw]
             oe = (drv & _SERVO_ON_BIT) != 0
             drv |= _MODE_BITS[tx["modes_display"][sl].view(np.uint8)] * oe
+            drv |= ((din & DI_POSITIVE_LIMIT) != 0) * np.uint32(_B["P_OT"])
+            drv |= ((din & DI_NEGATIVE_LIMIT) != 0) * np.uint32(_B["N_OT"])
+            drv |= ((din & DI_HOME_SWITCH) != 0) * np.uint32(_B["HomeSw"])
+            drv |= ((din & DI_EXT1) != 0) * np.uint32(_B["Latch1"] | _B["Home"])
+            drv |= ((din & DI_EXT2) != 0) * np.uint32(_B["Latch2"])
             self.drv[rows] = drv
             self.servo_on[rows] = oe
+            self.tp_status[rows] = tx["touch_probe_status"][sl]
+            self.tp_pos1[rows] = tx["touch_probe_pos1"][sl]
+            self.tp_pos2[rows] = tx["touch_probe_pos2"][sl]
         if self.virtual_rows.size:
             v = self.virtual_rows
             self.servo_on[v] = self.servo_req[v]
@@ -166,6 +250,14 @@ class MotionModule:
         if off.any():
             self.cmd_pos[off] = self.act_pos[off]
 
+    def latch_position(self, i: int, slot: int) -> float:
+        """A touch-probe latch of axis i converted to command units (unwrapped)."""
+        count = self.tp_pos1[i] if slot == 1 else self.tp_pos2[i]
+        # the latch is a 32-bit pulse count: place it next to the current 64-bit count
+        base = int(self.act_count[i])
+        d = (int(count) - base + 2**31) % 2**32 - 2**31
+        return (base + d) / float(self.ppu[i]) + float(self.pos_offset[i])
+
     # ------------------------------------------------------------------ stage 4: motion
     def motion(self) -> None:
         T = self.period_s
@@ -174,6 +266,10 @@ class MotionModule:
             scheduled, self._scheduled = self._scheduled, {}
             for i, axis in scheduled.items():
                 self._plan(i, axis)
+        if self.homing_axes:
+            for axis in list(self.homing_axes.values()):
+                if axis.homing is not None:
+                    axis.homing.step()
         active = self.profiles.active
         if active.any():
             idx = np.flatnonzero(active)
@@ -190,11 +286,6 @@ class MotionModule:
                     continue
                 # keep reporting while the end is pending (final command in transit, in-position check)
                 self.notify[i] = axis.on_profile_finished(job)
-        if self._scheduled:
-            # started during this stage (a buffered instruction taking over, an error stop): from the next period
-            scheduled, self._scheduled = self._scheduled, {}
-            for i, axis in scheduled.items():
-                self._plan(i, axis, start_cycle=cycle + 1)
         # derived command values (manual §2.3: differences of command positions / velocities)
         vel = (self.cmd_pos - self.prev_cmd_pos) / T
         accdec = (np.abs(vel) - np.abs(self.cmd_vel)) / T
@@ -208,6 +299,12 @@ class MotionModule:
         moving = vel != 0.0
         if moving.any():
             self.last_dir[moving] = np.where(vel[moving] > 0, 1, -1)
+        supervise(self)
+        if self._scheduled:
+            # started during this stage (a buffered instruction taking over, an error stop): from the next period
+            scheduled, self._scheduled = self._scheduled, {}
+            for i, axis in scheduled.items():
+                self._plan(i, axis, start_cycle=cycle + 1)
         self.prev_cmd_pos[:] = self.cmd_pos
         # Push the MC module's status changes to the instances (Done, CommandAborted, InVelocity, Error) so they show
         # in the period the change happened, independent of program order. Active is read by the instance at its
@@ -225,26 +322,38 @@ class MotionModule:
             return
         if job.status != JobStatus.STARTING and not job.replan and job.kind != JobKind.ERROR_STOP:
             return
+        # from the last command value (with start_cycle: the new profile begins after this period's value)
         p0, v0, a0 = float(self.cmd_pos[i]), float(self.prof_vel[i]), float(self.prof_acc[i])
-        if job.kind == JobKind.POSITION and job.relative and job.origin is None:
-            job.origin = p0
-            job.target = p0 + job.distance
         try:
-            seg = job.plan(self.planner, p0, v0, a0, float(self.override[i]))
+            seg = axis.plan_job(job, p0, v0, a0)
         except PlanningError as err:
             axis.raise_error(E_INTERNAL, source="profile planner", detail=str(err))
             return
+        if isinstance(seg, int):
+            owner = job.owner
+            axis.raise_error(seg, source=owner.label if owner is not None else None)
+            if owner is not None and job.status == JobStatus.ABORTED:
+                job.status = JobStatus.ERROR  # the instruction whose (re)planning failed shows the error
+                job.error_id = seg
+            return
         self.profiles.load(i, seg, self.cycle if start_cycle is None else start_cycle)
+        split = job.info.get("split_time")
+        if split is not None:
+            self.profiles.duration[i] = split
         self.notify[i] = True
-        self.step_accdec[i] = job.kind != JobKind.ERROR_STOP and (job.acceleration == 0 or job.deceleration == 0)
-        axis.on_planned(job)
+        self.step_accdec[i] = job.kind in (JobKind.POSITION, JobKind.VELOCITY, JobKind.JOG) and (
+            job.acceleration == 0 or job.deceleration == 0 or job.rapid)
+        self.stop_dec[i] = job.deceleration
+        job.status = JobStatus.ACTIVE
+        job.replan = False
+        job.cmd_done_cycle = -1
 
     # ------------------------------------------------------------------ stage 5: outputs
     def outputs(self) -> None:
         if self.bus_rows.size:
             rx = self.network.rx  # type: ignore[union-attr]
             rows, sl = self.bus_rows, self.bus_slaves
-            count = np.rint(self.cmd_pos[rows] * self.ppu[rows]).astype(np.int64)
+            count = np.rint((self.cmd_pos[rows] - self.pos_offset[rows]) * self.ppu[rows]).astype(np.int64)
             rx["target_position"][sl] = count.astype(np.int32)
             sw = self.network.tx["statusword"][sl] & 0x6F  # type: ignore[union-attr]
             # servo ON: Shutdown → Switch on → Enable operation as the drive reports each state; OFF: Shutdown
@@ -252,6 +361,7 @@ class MotionModule:
             cw[cw == 0] = CW_SHUTDOWN
             rx["controlword"][sl] = cw
             rx["modes_of_operation"][sl] = 8
+            rx["touch_probe_function"][sl] = self.tp_func[rows]
         if self.virtual_rows.size:
             v = self.virtual_rows
             on = self.servo_on[v]
@@ -261,11 +371,11 @@ class MotionModule:
     # ------------------------------------------------------------------ snapshot
     def capture(self) -> dict[str, Any]:
         return {
-            "cmd_pos": self.cmd_pos.copy(),
+            "cmd_pos": self.wrapped(self.cmd_pos),
             "cmd_vel": self.cmd_vel.copy(),
             "cmd_accdec": self.cmd_accdec.copy(),
             "cmd_jerk": self.cmd_jerk.copy(),
-            "act_pos": self.act_pos.copy(),
+            "act_pos": self.wrapped(self.act_pos),
             "act_vel": self.act_vel.copy(),
             "drv": self.drv.copy(),
             "discrete": tuple(a.capture() for a in self.axes),

@@ -43,6 +43,7 @@ class Segments:
     duration: float  # time at which the tail (constant velocity, a = 0) begins
     end_position: float
     end_velocity: float
+    overshoot: bool = False  # a position profile passes its target before arriving (the deceleration is too low)
 
     def sample(self, t: float) -> tuple[float, float, float]:
         """Scalar evaluation (for tests and planning); the kernel uses ProfileTable.evaluate."""
@@ -74,7 +75,7 @@ class Planner:
         return max(abs(speed), 1.0) / self.period_s
 
     def _run(self, *, p0: float, v0: float, a0: float, target_p: float | None, target_v: float,
-             vmax: float, acc: float, dec: float, jerk: float, forward: bool) -> Segments:
+             vmax: float, acc: float, dec: float, jerk: float, forward: bool, v_end: float = 0.0) -> Segments:
         inp = self._inp
         inp.current_position = [p0]
         inp.current_velocity = [v0]
@@ -94,32 +95,51 @@ class Planner:
         else:
             inp.control_interface = ControlInterface.Position
             inp.target_position = [target_p]
-            inp.target_velocity = [0.0]
+            inp.target_velocity = [v_end]
             inp.target_acceleration = [0.0]
-            inp.max_velocity = [vmax]
+            inp.max_velocity = [max(vmax, abs(v_end), abs(v0) if abs(v0) > vmax else 0.0, 1e-9)]
         result = self._otg.calculate(inp, self._traj)
         if result not in (Result.Working, Result.Finished):
             raise PlanningError(result, f"p0={p0} v0={v0} a0={a0} target={target_p} v={target_v} vmax={vmax}")
-        return _segments_from_trajectory(self._traj, target_p=target_p)
+        seg = _segments_from_trajectory(self._traj, target_p=target_p)
+        if target_p is not None:
+            ext = self._traj.position_extrema[0]
+            tol = 1e-9 * max(1.0, abs(target_p))
+            seg.overshoot = (forward and ext.max > target_p + tol) or (not forward and ext.min < target_p - tol)
+        return seg
 
     def position(self, *, p0: float, v0: float, a0: float, target: float, velocity: float,
-                 acceleration: float, deceleration: float, jerk: float) -> Segments:
-        """Point-to-point move to `target`; if the axis moves away from it, decelerate to a stop first, then reverse
-        (Operation Selection at Reversing = deceleration stop)."""
+                 acceleration: float, deceleration: float, jerk: float, v_end: float = 0.0,
+                 v_start: float = 0.0, reverse_immediate: bool = False) -> Segments:
+        """Point-to-point move to `target`, arriving with `v_end` (a blending transit velocity, else 0).
+
+        If the axis moves away from the target it first stops — decelerating, or at once with `reverse_immediate`
+        (Operation Selection at Reversing) — then moves. `v_start` is the axis Start Velocity: from standstill the
+        velocity steps to it and the profile ends at it before stepping to 0.
+        """
         v0, a0 = _clean(v0), _clean(a0)
         vmax = abs(velocity)
         acc = acceleration if acceleration > 0 else self._step_limit(vmax)
-        dec = deceleration if deceleration > 0 else self._step_limit(max(vmax, abs(v0)))
+        dec = deceleration if deceleration > 0 else self._step_limit(max(vmax, abs(v0), abs(v_end)))
         forward = target >= p0
         moving_away = (v0 > 0 and not forward) or (v0 < 0 and forward)
         if moving_away:
-            stop = self._run(p0=p0, v0=v0, a0=a0, target_p=None, target_v=0.0, vmax=vmax,
-                             acc=acc, dec=dec, jerk=jerk, forward=v0 > 0)
-            rest = self._run(p0=stop.end_position, v0=0.0, a0=0.0, target_p=target, target_v=0.0, vmax=vmax,
-                             acc=acc, dec=dec, jerk=jerk, forward=target >= stop.end_position)
+            if reverse_immediate:
+                stop = hold(p0)
+            else:
+                stop = self._run(p0=p0, v0=v0, a0=a0, target_p=None, target_v=0.0, vmax=vmax,
+                                 acc=acc, dec=dec, jerk=jerk, forward=v0 > 0)
+            rest = self.position(p0=stop.end_position, v0=0.0, a0=0.0, target=target, velocity=velocity,
+                                 acceleration=acceleration, deceleration=deceleration, jerk=jerk, v_end=v_end,
+                                 v_start=v_start)
             return concat(stop, rest)
+        sign = 1.0 if forward else -1.0
+        if v0 == 0 and a0 == 0 and 0 < v_start < vmax and target != p0:
+            v0 = sign * v_start  # Start Velocity: the velocity steps up at the start …
+            if v_end == 0:
+                v_end = sign * v_start  # … and steps down to 0 at the target
         return self._run(p0=p0, v0=v0, a0=a0, target_p=target, target_v=0.0, vmax=vmax,
-                         acc=acc, dec=dec, jerk=jerk, forward=forward)
+                         acc=acc, dec=dec, jerk=jerk, forward=forward, v_end=v_end)
 
     def velocity(self, *, p0: float, v0: float, a0: float, target_velocity: float,
                  acceleration: float, deceleration: float, jerk: float) -> Segments:
@@ -180,7 +200,10 @@ def _segments_from_trajectory(traj: Trajectory, *, target_p: float | None) -> Se
     end_p = prof.p[7] if target_p is None else target_p
     end_v = prof.v[7]
     end_v = 0.0 if abs(end_v) < _TINY else end_v
-    # tail: hold the final velocity for ever (exact target for position moves)
+    # tail: hold the final velocity for ever (exact target for position moves; a position move that ends with a
+    # non-zero velocity — a blend or Start Velocity — is ended by the MC module at that moment)
+    if target_p is not None and end_v != 0.0:
+        end_v = 0.0
     ts.append(duration)
     ps.append(end_p)
     vs.append(end_v)

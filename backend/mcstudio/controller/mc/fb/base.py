@@ -38,6 +38,9 @@ INT_RANGES = {
 }
 
 
+STRUCT_TYPES = ("_sHOMING_REF", "_sAXIS_PARAM", "_sTRIGGER_REF")
+
+
 class FBInputError(ValueError):
     """An input value has the wrong type for its variable; `field` names the variable."""
 
@@ -107,6 +110,14 @@ class Var:
             if not isinstance(value, str) or not value:
                 raise FBInputError(self.name, f"expected the name of an axis variable, got {value!r}")
             return value
+        if t in STRUCT_TYPES:
+            # a structure variable: a JSON object; members are checked by the instruction (manual ErrorIDs)
+            if not isinstance(value, dict):
+                raise FBInputError(self.name, f"expected a {t} structure (JSON object), got {value!r}")
+            for k, v in value.items():
+                if isinstance(v, float) and not math.isfinite(v):
+                    raise FBInputError(self.name, f"member {k} must be a finite number")
+            return dict(value)
         raise FBInputError(self.name, f"unsupported data type {t}")
 
     def present(self, value: Any) -> Any:
@@ -239,8 +250,13 @@ class FunctionBlock:
         defs = self.DEF.by_name
         return {k: defs[k].present(v) for k, v in self.inp.items()}
 
-    def resolve_axis(self) -> Axis | None:
-        return self.mc.by_name.get(self.inp.get("Axis") or "")
+    def resolve_axis(self, name_input: str = "Axis", *, allow_unused: bool = False) -> Axis | None:
+        """The axis named by an in-out; an unused axis counts as no axis (5460) except where the instruction works
+        on unused axes (MC_ChangeAxisUse, MC_WriteAxisParameter, MC_ReadAxisParameter)."""
+        axis = self.mc.by_name.get(self.inp.get(name_input) or "")
+        if axis is not None and not axis.used and not allow_unused:
+            return None
+        return axis
 
     # -- error latch: Error stays TRUE until the axis error is reset (or, without an axis, a common reset)
     def _set_error(self, code: int, axis: Axis | None) -> None:
@@ -366,7 +382,7 @@ class ExecuteFB(FunctionBlock):
     # helpers for subclasses
     def start_job(self, axis: Axis, job: Job) -> None:
         """Submit a motion job with the manual's acceptance rules; sets outputs for refusals."""
-        verdict, code = axis.check_start(jog=False)
+        verdict, code = axis.check_start("move")
         self._submit(axis, job, verdict, code)
 
     def _submit(self, axis: Axis, job: Job, verdict: str, code: int) -> None:

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+from .admin import ADMIN_CLASSES
 from .base import FunctionBlock
+from .homing_fb import HOMING_CLASSES
 from .single_axis import FB_CLASSES
 
-FB_TYPES: dict[str, type[FunctionBlock]] = {cls.DEF.name: cls for cls in FB_CLASSES}
+FB_TYPES: dict[str, type[FunctionBlock]] = {cls.DEF.name: cls for cls in (*FB_CLASSES, *ADMIN_CLASSES, *HOMING_CLASSES)}

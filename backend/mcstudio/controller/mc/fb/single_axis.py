@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
+from ....drives.cia402 import DI_NEGATIVE_LIMIT, DI_POSITIVE_LIMIT
 from .. import errors as E
 from ..enums import _eMC_BUFFER_MODE, _eMC_DIRECTION
 from ..jobs import Job, JobKind, JobStatus
@@ -211,16 +212,40 @@ class MC_Stop(ExecuteFB):
             self._holding = None
 
 
+# --------------------------------------------------------------------------------------------------- start checks
+def start_limit_error(axis: Axis, direction: int, target: float | None = None) -> int:
+    """Checks at the start of a motion in `direction` (+1/−1, 0 = no defined direction), A-1 #142–146: an active
+    limit input in the direction of motion (6443/6444) and, in Linear Mode with home defined, software limits for
+    the target or for a start position already beyond a limit (6440/6441)."""
+    m, i = axis.m, axis.i
+    din = int(m.din[i])
+    if din & DI_POSITIVE_LIMIT and direction >= 0:
+        return E.E_POSI_LIMIT_INPUT
+    if din & DI_NEGATIVE_LIMIT and direction <= 0:
+        return E.E_NEGA_LIMIT_INPUT
+    lim = axis.params.Limit
+    if lim.SwLimitMode != 0 and not axis.rotary and axis.homed:
+        cur = float(m.cmd_pos[i])
+        if (target is not None and target > lim.PosiSwLimit) or (cur >= lim.PosiSwLimit and direction > 0):
+            return E.E_POSI_SW_LIMIT
+        if (target is not None and target < lim.NegaSwLimit) or (cur <= lim.NegaSwLimit and direction < 0):
+            return E.E_NEGA_SW_LIMIT
+    return 0
+
+
 # --------------------------------------------------------------------------------------------------- motion base
 _REEXEC_LATCHED = (("Jerk", E.E_REEXEC_JERK), ("BufferMode", E.E_REEXEC_BUFFER_MODE),
-                   ("Direction", E.E_REEXEC_DIRECTION))
+                   ("Direction", E.E_REEXEC_DIRECTION), ("MoveMode", 0x545E))
 
 
 class _MotionFB(ExecuteFB):
     """A motion instruction with a job: state check, input check, submit; re-execution with latched inputs whose
-    change is the manual's 5458/5454/5455 error (A-2.3)."""
+    change is the manual's 5458/5454/5455/545E error (A-2.3)."""
 
     KIND: JobKind
+    ACCEPT = "move"  # acceptance class (acceptance.py)
+    OVERRIDABLE = True  # the seven instructions MC_SetOverride names
+    BLENDABLE = False
 
     def _check(self, axis: Axis) -> int:
         raise NotImplementedError
@@ -228,8 +253,11 @@ class _MotionFB(ExecuteFB):
     def _fill(self, job: Job, axis: Axis) -> None:
         raise NotImplementedError
 
+    def _limits(self, job: Job, axis: Axis) -> int:
+        return 0
+
     def execute(self, axis: Axis) -> None:
-        verdict, code = axis.check_start()
+        verdict, code = axis.check_start(self.ACCEPT)
         if verdict == "abort":
             self._finish("CommandAborted")
             return
@@ -238,9 +266,14 @@ class _MotionFB(ExecuteFB):
             self.fail(code, axis)
             return
         i = self.inp
-        job = Job(self.KIND, self, buffer_mode=i["BufferMode"], direction=i.get("Direction", 0))
+        job = Job(self.KIND, self, buffer_mode=i.get("BufferMode", 0), direction=i.get("Direction", 0),
+                  overridable=self.OVERRIDABLE, blendable=self.BLENDABLE)
         job.info["latched"] = {k: i[k] for k, _ in _REEXEC_LATCHED if k in i}
         self._fill(job, axis)
+        code = self._limits(job, axis)
+        if code:
+            self.fail(code, axis)
+            return
         self._submit(axis, job, "ok", 0)
 
     def reexecute(self, axis: Axis) -> None:
@@ -265,10 +298,10 @@ class _MotionFB(ExecuteFB):
 # --------------------------------------------------------------------------------------------------- positioning
 class _PositionFB(_MotionFB):
     KIND = JobKind.POSITION
-    RELATIVE = False
+    BLENDABLE = True
 
-    def _target_inputs(self, axis: Axis) -> tuple[int, float]:
-        """(error code, absolute target or distance)."""
+    def _target_inputs(self, axis: Axis) -> tuple[int, float, bool]:
+        """(error code, absolute target or distance, relative?)."""
         raise NotImplementedError
 
     def _check(self, axis: Axis) -> int:
@@ -281,10 +314,13 @@ class _PositionFB(_MotionFB):
             return code
         if "Direction" in i and i["Direction"] not in _DIRS:
             return E.E_DIRECTION
-        if i["BufferMode"] not in _BUFS:
+        if i["BufferMode"] not in self._buffer_modes():
             return E.E_BUFFER_MODE
-        code, _ = self._target_inputs(axis)
+        code, _, _ = self._target_inputs(axis)
         return code
+
+    def _buffer_modes(self) -> tuple[int, ...]:
+        return _BUFS
 
     def _fill(self, job: Job, axis: Axis) -> None:
         i = self.inp
@@ -292,14 +328,38 @@ class _PositionFB(_MotionFB):
             axis, i["Velocity"], i["Acceleration"], i["Deceleration"]
         )
         job.jerk = i["Jerk"]
-        _, value = self._target_inputs(axis)
-        if self.RELATIVE:
-            job.relative = True
+        _, value, relative = self._target_inputs(axis)
+        job.relative = relative
+        if relative:
             job.distance = value
             if job.origin is not None:
                 job.target = job.origin + value  # re-execution measures from the original start
         else:
-            job.target = value
+            job.absolute_target = value
+            job.direction = i.get("Direction", _eMC_DIRECTION._mcNoDirection)
+            _, job.target = axis.resolve_target(value, job.direction)
+
+    def _limits(self, job: Job, axis: Axis) -> int:
+        cur = float(axis.m.cmd_pos[axis.i])
+        target = cur + job.distance if job.relative else job.target
+        direction = 1 if target > cur else -1 if target < cur else 1
+        return start_limit_error(axis, direction, target)
+
+
+def _absolute_target(axis: Axis, pos: float, direction: int) -> tuple[int, float, bool]:
+    if not fits_position(pos, axis.ppu):
+        return E.E_TARGET_POSITION, pos, False
+    if axis.rotary and direction != _eMC_DIRECTION._mcNoDirection and not axis.mod_min <= pos <= axis.mod_max:
+        return E.E_TARGET_POSITION, pos, False
+    return 0, pos, False
+
+
+def _relative_distance(axis: Axis, d: float) -> tuple[int, float, bool]:
+    if not fits_distance(d, axis.ppu):
+        return E.E_TRAVEL_DISTANCE, d, True
+    if not axis.rotary and not fits_position(float(axis.m.cmd_pos[axis.i]) + d, axis.ppu):
+        return E.E_TRAVEL_DISTANCE, d, True
+    return 0, d, True
 
 
 class MC_MoveAbsolute(_PositionFB):
@@ -321,20 +381,13 @@ class MC_MoveAbsolute(_PositionFB):
         ),
         outputs=(O_DONE, O_BUSY, O_ACTIVE, O_ABORTED, O_ERROR, O_ERRORID),
         spec="omron-axis-instructions.md MC_MoveAbsolute (seed 000 line 3491)",
-        status="partial",
-        notes="Aborting and Buffered multi-execution; blending modes, rotary-mode directions, software limits and "
-        "override arrive with the single-axis conformance issue.",
     )
 
-    def _target_inputs(self, axis: Axis) -> tuple[int, float]:
-        pos = self.inp["Position"]
-        if not fits_position(pos, axis.ppu):
-            return E.E_TARGET_POSITION, pos
-        return 0, pos
+    def _target_inputs(self, axis: Axis) -> tuple[int, float, bool]:
+        return _absolute_target(axis, self.inp["Position"], self.inp["Direction"])
 
 
 class MC_MoveRelative(_PositionFB):
-    RELATIVE = True
     DEF = FBDef(
         name="MC_MoveRelative",
         title="Relative positioning",
@@ -352,16 +405,87 @@ class MC_MoveRelative(_PositionFB):
         ),
         outputs=(O_DONE, O_BUSY, O_ACTIVE, O_ABORTED, O_ERROR, O_ERRORID),
         spec="omron-axis-instructions.md MC_MoveRelative (seed 000 line 4307)",
-        status="partial",
-        notes="Aborting and Buffered multi-execution; re-execution measures from the original start. Blending and "
-        "override arrive with the single-axis conformance issue.",
     )
 
-    def _target_inputs(self, axis: Axis) -> tuple[int, float]:
-        d = self.inp["Distance"]
-        if not fits_distance(d, axis.ppu):
-            return E.E_TRAVEL_DISTANCE, d
-        return 0, d
+    def _target_inputs(self, axis: Axis) -> tuple[int, float, bool]:
+        return _relative_distance(axis, self.inp["Distance"])
+
+
+class MC_Move(_PositionFB):
+    DEF = FBDef(
+        name="MC_Move",
+        title="Positioning",
+        summary="Absolute or relative positioning, selected by MoveMode.",
+        kind="execute",
+        inouts=(IO_AXIS,),
+        inputs=(
+            I_EXECUTE,
+            Var("Position", "LREAL", 0.0, "Absolute: target position; relative: travel distance", "unit",
+                "negative, positive or 0"),
+            I_VELOCITY,
+            I_ACC,
+            I_DEC,
+            I_JERK,
+            I_DIRECTION,
+            I_BUFFER,
+            Var("MoveMode", "_eMC_MOVE_MODE", 0, "0: absolute, 1: relative", None, "0, 1", allowed=(0, 1)),
+        ),
+        outputs=(O_DONE, O_BUSY, O_ACTIVE, O_ABORTED, O_ERROR, O_ERRORID),
+        spec="omron-axis-instructions.md MC_Move (seed 000 line 3364)",
+    )
+
+    def _check(self, axis: Axis) -> int:
+        if self.inp["MoveMode"] not in (0, 1):
+            return E.E_MOVE_MODE
+        return super()._check(axis)
+
+    def _target_inputs(self, axis: Axis) -> tuple[int, float, bool]:
+        if self.inp["MoveMode"] == 1:
+            return _relative_distance(axis, self.inp["Position"])
+        return _absolute_target(axis, self.inp["Position"], self.inp["Direction"])
+
+
+class MC_MoveZeroPosition(_PositionFB):
+    DEF = FBDef(
+        name="MC_MoveZeroPosition",
+        title="High-speed home",
+        summary="Positions to absolute 0 (the home); home must be defined.",
+        kind="execute",
+        inouts=(IO_AXIS,),
+        inputs=(
+            I_EXECUTE,
+            I_VELOCITY,
+            I_ACC,
+            I_DEC,
+            I_JERK,
+            Var("BufferMode", "_eMC_BUFFER_MODE", 0, "Behaviour on multi-execution", None, "0, 1", allowed=(0, 1)),
+        ),
+        outputs=(O_DONE, O_BUSY, O_ACTIVE, O_ABORTED, O_ERROR, O_ERRORID),
+        spec="omron-axis-instructions.md MC_MoveZeroPosition (seed 000 line 4899)",
+    )
+    BLENDABLE = False
+
+    def _buffer_modes(self) -> tuple[int, ...]:
+        return (0, 1)
+
+    def _check(self, axis: Axis) -> int:
+        code = super()._check(axis)
+        if code:
+            return code
+        if not axis.homed:
+            return E.E_HOME_UNDEFINED
+        if axis.rotary and not axis.mod_min <= 0.0 <= axis.mod_max:
+            return E.E_RING_NO_ZERO
+        return 0
+
+    def _target_inputs(self, axis: Axis) -> tuple[int, float, bool]:
+        return 0, 0.0, False
+
+    def _fill(self, job: Job, axis: Axis) -> None:
+        super()._fill(job, axis)
+        job.direction = _eMC_DIRECTION._mcShortestWay  # rotary: always the shortest way to 0
+        _, job.target = axis.resolve_target(0.0, job.direction)
+        job.info["zero_position"] = True
 
 
 # --------------------------------------------------------------------------------------------------- MC_MoveVelocity
@@ -391,8 +515,6 @@ class MC_MoveVelocity(_MotionFB):
             O_ERRORID,
         ),
         spec="omron-axis-instructions.md MC_MoveVelocity (seed 000 line 4486)",
-        status="partial",
-        notes="Override arrives with the single-axis conformance issue.",
     )
     KIND = JobKind.VELOCITY
 
@@ -429,6 +551,9 @@ class MC_MoveVelocity(_MotionFB):
         _, job.acceleration, job.deceleration = _clamp_profile(axis, 0.0, i["Acceleration"], i["Deceleration"])
         job.jerk = i["Jerk"]
         job.velocity = self._signed_velocity(axis)
+
+    def _limits(self, job: Job, axis: Axis) -> int:
+        return start_limit_error(axis, 1 if job.velocity > 0 else -1 if job.velocity < 0 else 0)
 
 
 # --------------------------------------------------------------------------------------------------- MC_MoveJog
@@ -529,18 +654,19 @@ class MC_MoveJog(FunctionBlock):
             self.fail(E.E_ILLEGAL_AXIS, None)
             return
         o["CommandAborted"] = False
-        verdict, code = axis.check_start(jog=True)
+        verdict, code = axis.check_start("standstill_only")
         if verdict == "abort":
             o["CommandAborted"] = True
             self._aborted_cycle = self.mc.cycle
             return
-        code = self._check_inputs() or code
+        code = self._check_inputs() or code or start_limit_error(axis, direction)
         if code:
             self.fail(code, axis)
             return
         i = self.inp
         _, acc, dec = _clamp_profile(axis, 0.0, i["Acceleration"], i["Deceleration"])
-        job = Job(JobKind.JOG, self, velocity=self._velocity(axis, direction), acceleration=acc, deceleration=dec)
+        job = Job(JobKind.JOG, self, velocity=self._velocity(axis, direction), acceleration=acc, deceleration=dec,
+                  overridable=True)
         err = axis.submit(job)
         if err:
             self.fail(err, axis)
@@ -559,8 +685,10 @@ FB_CLASSES: tuple[type[FunctionBlock], ...] = (
     MC_Power,
     MC_Reset,
     MC_Stop,
+    MC_Move,
     MC_MoveAbsolute,
     MC_MoveRelative,
+    MC_MoveZeroPosition,
     MC_MoveVelocity,
     MC_MoveJog,
 )
