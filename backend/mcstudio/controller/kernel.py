@@ -174,6 +174,7 @@ class Controller:
         entry = self.program.pop(fb_id, None)
         if entry is None:
             raise KernelError("id", f"no function-block instance {fb_id}", status=404)
+        entry.fb.on_delete()
 
     def check_leases(self) -> None:
         """Dead-man: an instance whose lease was not renewed drops its Execute/Enable-type inputs."""

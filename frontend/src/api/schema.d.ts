@@ -438,6 +438,8 @@ export interface components {
              */
             node_address?: number | null;
             parameters?: components["schemas"]["AxisParameters-Input"];
+            drive?: components["schemas"]["ServoDriveSettings"];
+            sensors?: components["schemas"]["SensorSettings"];
         };
         /**
          * AxisConfig
@@ -474,6 +476,8 @@ export interface components {
              */
             node_address?: number | null;
             parameters?: components["schemas"]["AxisParameters-Output"];
+            drive?: components["schemas"]["ServoDriveSettings"];
+            sensors?: components["schemas"]["SensorSettings"];
         };
         /** AxisDetail */
         AxisDetail: {
@@ -1591,6 +1595,82 @@ export interface components {
              * @default true
              */
             saved: boolean;
+        };
+        /**
+         * SensorSettings
+         * @description The simulated mechanism's sensors, in command units of the initial coordinate system (null = not fitted).
+         *
+         *     They reach the MC module as drive inputs (60FDh bits, touch-probe latches), like wired sensors: the positive and
+         *     negative limit switches are ON beyond their positions, the home proximity dog and the external latch inputs
+         *     are ON inside their zones, and the encoder's Z phase pulses once per motor revolution.
+         */
+        SensorSettings: {
+            /**
+             * Positivelimit
+             * @description Positive limit input (P_OT) ON at positions ≥ this [unit]
+             */
+            PositiveLimit?: number | null;
+            /**
+             * Negativelimit
+             * @description Negative limit input (N_OT) ON at positions ≤ this [unit]
+             */
+            NegativeLimit?: number | null;
+            /**
+             * Homeproximitystart
+             * @description Home proximity dog: ON from here … [unit]
+             */
+            HomeProximityStart?: number | null;
+            /**
+             * Homeproximityend
+             * @description … to here [unit]
+             */
+            HomeProximityEnd?: number | null;
+            /**
+             * Externalhomestart
+             * @description External home / latch input 1: ON from here … [unit]
+             */
+            ExternalHomeStart?: number | null;
+            /**
+             * Externalhomeend
+             * @description … to here [unit]
+             */
+            ExternalHomeEnd?: number | null;
+            /**
+             * Latch2Start
+             * @description External latch input 2: ON from here … [unit]
+             */
+            Latch2Start?: number | null;
+            /**
+             * Latch2End
+             * @description … to here [unit]
+             */
+            Latch2End?: number | null;
+            /**
+             * Zphaseoffset
+             * @description Encoder Z phase: one pulse per motor revolution, at this offset from motor position 0 [pulse]
+             * @default 0
+             */
+            ZPhaseOffset: number;
+        };
+        /**
+         * ServoDriveSettings
+         * @description Sysmac Studio's axis settings outside `_sAXIS_PARAM` that the instructions need: the encoder type (position
+         *     count settings) and where the drive's inputs come from. Not readable or writable by MC_Read/WriteAxisParameter.
+         */
+        ServoDriveSettings: {
+            /**
+             * Encodertype
+             * @description Incremental: home undefined at power-on; absolute: home defined at servo ON
+             * @default incremental
+             * @enum {string}
+             */
+            EncoderType: "incremental" | "absolute";
+            /**
+             * Absoluteencoderhomeoffset
+             * @description Absolute encoder home offset [unit]
+             * @default 0
+             */
+            AbsoluteEncoderHomeOffset: number;
         };
         /** StepIn */
         StepIn: {

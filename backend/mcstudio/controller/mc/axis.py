@@ -65,6 +65,7 @@ class Axis(AxisPlanning):
     # ------------------------------------------------------------------ configuration
     def apply_parameters(self, params: AxisParameters, *, initial: bool = False) -> None:
         """(Re)read the parameters the period uses: scale, count mode (MC_WriteAxisParameter, MC_Write)."""
+        old = None if initial else (self.ppu, self.rotary, self.mod_min, self.mod_max)
         self.params = params
         self.ppu = pulses_per_unit(params)
         pc = params.PosCount
@@ -78,6 +79,12 @@ class Axis(AxisPlanning):
             m.mod_min[i] = self.mod_min
             m.mod_len[i] = self.mod_max - self.mod_min if self.rotary else 0.0
             m.refresh_params(self)
+            if old != (self.ppu, self.rotary, self.mod_min, self.mod_max):
+                # new unit conversion or position count settings: home must be defined again (manual §2.3)
+                m.pos_offset[i] = 0.0
+                m.act_pos[i] = m.act_count[i] / self.ppu
+                m.cmd_pos[i] = m.prev_cmd_pos[i] = m.act_pos[i]
+                self.homed = False
 
     # ------------------------------------------------------------------ coordinates
     def wrap(self, x: float) -> float:
@@ -302,6 +309,11 @@ class Axis(AxisPlanning):
             self.abort_all()
             self._start(job)
             return 0
+        if cur.info.get("feed"):
+            # only Aborting onto MC_MoveFeed: the new instruction errors and MC_MoveFeed is aborted (543C)
+            self._end_job(cur, JobStatus.ABORTED)
+            self.halt()
+            return E.E_MULTIEXEC_DISABLED
         if self.buffered is not None:
             return E.E_BUFFER_LIMIT
         blending = mode >= _eMC_BUFFER_MODE._mcBlendingLow

@@ -110,6 +110,47 @@ class _eMC_LIMIT_REVERSE_MODE(enum.IntEnum):
     _mcRevDecelerationStop = 2
 
 
+class _eMC_TRIGGER_MODE(enum.IntEnum):
+    _mcDrive = 0
+    _mcController = 1
+
+
+class _eMC_TRIGGER_LATCH_ID(enum.IntEnum):
+    _mcLatch1 = 0
+    _mcLatch2 = 1
+
+
+class _eMC_TRIGGER_INPUT_DRIVE(enum.IntEnum):
+    _mcEncoderMark = 0
+    _mcEXT = 1
+
+
+class _eMC_REFERENCE_TYPE(enum.IntEnum):
+    _mcCommand = 0
+    _mcFeedback = 1
+    _mcLatestCommand = 2
+
+
+class _eMC_EXECUTION_MODE(enum.IntEnum):
+    _mcImmediately = 0
+
+
+class _eMC_PARAMETER_NUMBER(enum.IntEnum):
+    _mcChkVel = 0
+    _mcChkAcc = 1
+    _mcChkDec = 2
+    _mcPosiChkTrq = 3
+    _mcNegaChkTrq = 4
+    _mcFELmt = 5
+    _mcChkFELmt = 6
+    _mcSwLmtMode = 7
+    _mcPosiSwLmt = 8
+    _mcNegaSwLmt = 9
+    _mcInPosTime = 10
+    _mcInPosRange = 11
+    _mcStartVel = 12
+
+
 ENUMS: dict[str, type[enum.IntEnum]] = {
     cls.__name__: cls
     for cls in (
@@ -127,6 +168,12 @@ ENUMS: dict[str, type[enum.IntEnum]] = {
         _eMC_HOMING_MODE,
         _eMC_HOME_INPUT,
         _eMC_LIMIT_REVERSE_MODE,
+        _eMC_TRIGGER_MODE,
+        _eMC_TRIGGER_LATCH_ID,
+        _eMC_TRIGGER_INPUT_DRIVE,
+        _eMC_REFERENCE_TYPE,
+        _eMC_EXECUTION_MODE,
+        _eMC_PARAMETER_NUMBER,
     )
 }
 

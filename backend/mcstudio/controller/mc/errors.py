@@ -78,6 +78,11 @@ E_HOME_UNDEFINED = 0x5466
 E_RING_NO_ZERO = 0x549C
 E_MASK_DISTANCE = 0x742B
 E_HOMING_PARAMETER = 0x5700
+E_PARAMETER_NUMBER = 0x544C
+E_DUPLICATE_LATCH = 0x546E
+E_SETTING_VALUE = 0x544F
+E_AXIS_PARAM_NOT_WRITABLE = 0x573A
+E_AXIS_PARAM_RANGE = 0x573B
 # Run-time axis faults and warnings that the instruction manual leaves to the Troubleshooting Manual (not in the
 # seeds): codes assigned by MC Studio, see errors_table.py and docs/decisions.md D19.
 E_SW_LIMIT_POSI = 0x6450

@@ -11,7 +11,18 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ...drives.cia402 import DI_EXT1, DI_EXT2, DI_HOME_SWITCH, DI_NEGATIVE_LIMIT, DI_POSITIVE_LIMIT
+from ...drives.cia402 import (
+    DI_EXT1,
+    DI_EXT2,
+    DI_HOME_SWITCH,
+    DI_NEGATIVE_LIMIT,
+    DI_POSITIVE_LIMIT,
+    TP1_ENABLE,
+    TP1_POS_EDGE,
+    TP1_SOURCE_Z,
+    TS1_STORED,
+    TS2_STORED,
+)
 from . import errors as E
 from .axis import Axis
 from .jobs import JobKind, JobStatus
@@ -102,6 +113,7 @@ class MotionModule:
         self._scheduled: dict[int, Axis] = {}  # jobs accepted (or changed) this period, planned in its motion stage
         self.changed: list[Any] = []  # jobs whose status changed this period (their instances are refreshed)
         self.homing_axes: dict[int, Axis] = {}
+        self.watchers: dict[int, Any] = {}  # instances watching a latch / trigger each period (by instance id)
         self._inv_mask = np.zeros(n, dtype=np.uint32)  # 60FDh bits whose logic is inverted (axis parameters)
         # supervision parameters per axis (refreshed when parameters are written at run time)
         self.sw_mode = np.zeros(n, dtype=np.int8)
@@ -250,6 +262,19 @@ class MotionModule:
         if off.any():
             self.cmd_pos[off] = self.act_pos[off]
 
+    def arm_latch(self, i: int, slot: int, *, z_phase: bool) -> None:
+        """Arm touch probe `slot` (1, 2) of axis i's drive on the Z phase or the external input (60B8h)."""
+        bits = TP1_ENABLE | TP1_POS_EDGE | (TP1_SOURCE_Z if z_phase else 0)
+        shift = 0 if slot == 1 else 8
+        self.tp_func[i] = (int(self.tp_func[i]) & ~(0xFF << shift)) | (bits << shift)
+
+    def disarm_latch(self, i: int, slot: int) -> None:
+        shift = 0 if slot == 1 else 8
+        self.tp_func[i] = int(self.tp_func[i]) & ~(0xFF << shift)
+
+    def latch_stored(self, i: int, slot: int) -> bool:
+        return bool(int(self.tp_status[i]) & (TS1_STORED if slot == 1 else TS2_STORED))
+
     def latch_position(self, i: int, slot: int) -> float:
         """A touch-probe latch of axis i converted to command units (unwrapped)."""
         count = self.tp_pos1[i] if slot == 1 else self.tp_pos2[i]
@@ -270,6 +295,9 @@ class MotionModule:
             for axis in list(self.homing_axes.values()):
                 if axis.homing is not None:
                     axis.homing.step()
+        if self.watchers:
+            for watcher in list(self.watchers.values()):
+                watcher.watch()
         active = self.profiles.active
         if active.any():
             idx = np.flatnonzero(active)

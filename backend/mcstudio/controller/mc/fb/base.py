@@ -110,6 +110,12 @@ class Var:
             if not isinstance(value, str) or not value:
                 raise FBInputError(self.name, f"expected the name of an axis variable, got {value!r}")
             return value
+        if t == "ANY_NUM":  # MC_Write SettingValue: a number or an enumerator name, checked by the instruction
+            if isinstance(value, bool) or not isinstance(value, int | float | str):
+                raise FBInputError(self.name, f"expected a number or an enumerator name, got {value!r}")
+            if isinstance(value, float) and not math.isfinite(value):
+                raise FBInputError(self.name, f"expected a finite number, got {value!r}")
+            return value
         if t in STRUCT_TYPES:
             # a structure variable: a JSON object; members are checked by the instruction (manual ErrorIDs)
             if not isinstance(value, dict):
@@ -233,6 +239,9 @@ class FunctionBlock:
                 raise FBInputError(k, f"{self.DEF.name} has no input or in-out named {k!r}")
             coerced[k] = var.coerce(v)
         self.inp.update(coerced)
+
+    def on_delete(self) -> None:
+        """The instance is removed from the program (release what it holds, e.g. a latch)."""
 
     def drop_dead_man(self) -> None:
         for v in self.DEF.inputs:

@@ -4,7 +4,11 @@ from __future__ import annotations
 
 from .admin import ADMIN_CLASSES
 from .base import FunctionBlock
+from .common import COMMON_CLASSES
 from .homing_fb import HOMING_CLASSES
+from .latch import LATCH_CLASSES
 from .single_axis import FB_CLASSES
 
-FB_TYPES: dict[str, type[FunctionBlock]] = {cls.DEF.name: cls for cls in (*FB_CLASSES, *ADMIN_CLASSES, *HOMING_CLASSES)}
+ALL_CLASSES: tuple[type[FunctionBlock], ...] = (*FB_CLASSES, *ADMIN_CLASSES, *HOMING_CLASSES, *COMMON_CLASSES,
+                                                *LATCH_CLASSES)
+FB_TYPES: dict[str, type[FunctionBlock]] = {cls.DEF.name: cls for cls in ALL_CLASSES}
