@@ -39,6 +39,25 @@ def small_project(**operation: Any) -> Project:
     )
 
 
+def axis_project(*, sensors: dict[str, Any] | None = None, count_mode: str = "_mcCountModeLinear",
+                 modulo: tuple[float, float] = (0.0, 360.0), encoder: str = "incremental", **groups: dict[str, Any]
+                 ) -> Project:
+    """One servo axis MC_Axis000 on node 1 (mm, 10 mm/rev, 2^20 pulses/rev) plus a virtual MC_Axis001, with
+    parameter groups updated from `groups` (e.g. Limit={...}, Homing={...}) and simulated sensors."""
+    params = copy.deepcopy(MM_AXIS)
+    params["PosCount"] = {"CountMode": count_mode, "ModuloMinPosVal": modulo[0], "ModuloMaxPosVal": modulo[1]}
+    for group, values in groups.items():
+        params.setdefault(group, {}).update(values)
+    return Project(
+        name="test",
+        axes=[
+            AxisConfig(name="MC_Axis000", number=0, type="_mcServo", node_address=1, parameters=params,
+                       sensors=sensors or {}, drive={"EncoderType": encoder}),
+            AxisConfig(name="MC_Axis001", number=1, type="_mcVirServo", parameters=copy.deepcopy(params)),
+        ],
+    )
+
+
 @pytest.fixture
 def demo_project() -> Project:
     return load_project(DEMO)

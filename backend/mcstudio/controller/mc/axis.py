@@ -220,8 +220,9 @@ class Axis(AxisPlanning):
             job = Job(JobKind.ERROR_STOP, None, deceleration=dec)
             if stop_at is not None:
                 job.info["stop_at"] = stop_at
-            if dec <= 0 and stop_at is None:
-                self.halt()  # no limit set: immediate stop (decision D3)
+            moving = self.m.profiles.active[self.i] and (self.m.prof_vel[self.i] != 0 or self.m.prof_acc[self.i] != 0)
+            if (dec <= 0 and stop_at is None) or not moving:
+                self.halt()  # no limit set (decision D3) or nothing to decelerate: stop where the command is
                 return
             self.current = job
             self.m.schedule(self)
@@ -280,8 +281,9 @@ class Axis(AxisPlanning):
     # ------------------------------------------------------------------ MC_Reset
     def reset(self) -> bool:
         """Reset the axis error. Returns False (Failure) while the axis is still decelerating from the error."""
-        if self.state == S.ErrorStop and self.current is not None and self.current.kind == JobKind.ERROR_STOP:
-            return False
+        cur = self.current
+        if self.state == S.ErrorStop and cur is not None and cur.kind == JobKind.ERROR_STOP and cur.running:
+            return False  # still decelerating from the error
         if self.error_code or self.state == S.ErrorStop or self.observations:
             self.error_code = 0
             self.observations.clear()
@@ -406,12 +408,12 @@ class Axis(AxisPlanning):
     def set_override(self, fb_id: int, factor: float | None, changed: bool) -> None:
         """MC_SetOverride: `factor` in % (None = Enable FALSE → 100 %); the later instance has priority."""
         if changed and factor is not None:
-            self.override_owner = fb_id
-        if self.override_owner not in (None, fb_id):
+            self.override_owner = fb_id  # an Enable edge takes the override over
+        if self.override_owner != fb_id:
             return
         if factor is None:
-            if self.override_owner == fb_id:
-                self.override_owner = None
+            # the owner's Enable FALSE disables the override (100 %) until an instance is enabled again
+            self.override_owner = -1
             factor = 100.0
         value = factor / 100.0
         m, i = self.m, self.i

@@ -105,6 +105,7 @@ class MotionModule:
         self.tp_pos2 = np.zeros(n, dtype=np.int64)
         self.step_accdec = np.zeros(n, dtype=bool)  # running instruction has acc/dec 0 → Cmd.AccDec/Jerk read 0
         self.stop_dec = np.zeros(n)  # deceleration a supervision stop uses (of the running instruction)
+        self.target_checked = np.zeros(n, dtype=bool)  # running motion has a target checked against the limits
         self.notify = np.zeros(n, dtype=bool)  # profile end not yet reported to the axis
         self.override = np.ones(n)
         self.last_dir = np.ones(n, dtype=np.int8)  # direction of the last command motion (+1 after power-on)
@@ -372,6 +373,8 @@ class MotionModule:
         self.step_accdec[i] = job.kind in (JobKind.POSITION, JobKind.VELOCITY, JobKind.JOG) and (
             job.acceleration == 0 or job.deceleration == 0 or job.rapid)
         self.stop_dec[i] = job.deceleration
+        # positioning and homing targets are checked at start (6440/6441), the look-ahead guards the rest
+        self.target_checked[i] = job.kind in (JobKind.POSITION, JobKind.HOMING, JobKind.RESET_FE)
         job.status = JobStatus.ACTIVE
         job.replan = False
         job.cmd_done_cycle = -1

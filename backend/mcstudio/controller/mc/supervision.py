@@ -74,7 +74,7 @@ def _observe(m: MotionModule, code: int, active: np.ndarray, scope: np.ndarray) 
 def _software_limits(m: MotionModule, sw: np.ndarray, T: float) -> None:
     mode = m.sw_mode
     v = m.prof_vel
-    cmd_mode = sw & ((mode == 1) | (mode == 2))
+    cmd_mode = sw & ((mode == 1) | (mode == 2)) & ~m.target_checked
     act_mode = sw & ((mode == 3) | (mode == 4))
     if cmd_mode.any():
         dec = np.where(m.stop_dec > 0, m.stop_dec, m.max_dec)
