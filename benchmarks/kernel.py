@@ -14,6 +14,7 @@ PARAMS = {
     "UnitConversion": {"UnitDisplay": "_mcMm", "CmdPlsCountPerMotorRotation": 1048576,
                        "WorkTravelDistancePerMotorRotation": 10.0},
     "Operation": {"MaxVel": 1000.0, "MaxJogVel": 100.0, "MaxAcc": 20000.0, "MaxDec": 20000.0},
+    "Limit": {"PosiSwLimit": 100000.0, "NegaSwLimit": -100000.0},
     "Homing": {"Vel": 50.0, "ApproachVel": 5.0, "CompensationVel": 10.0},
 }
 

@@ -21,6 +21,7 @@ MM_AXIS: dict[str, Any] = {
                        "WorkTravelDistancePerMotorRotation": 10.0},
     "Operation": {"MaxVel": 500.0, "MaxJogVel": 100.0, "MaxAcc": 10000.0, "MaxDec": 10000.0, "InPosRange": 0.01,
                   "ZeroPosRange": 0.01},
+    "Limit": {"PosiSwLimit": 100000.0, "NegaSwLimit": -100000.0},
     "Homing": {"Vel": 50.0, "ApproachVel": 5.0, "CompensationVel": 10.0, "HomeInputMaskDistance": 10.0},
 }
 

@@ -46,6 +46,13 @@ def post_step(body: StepIn, studio: Studio = Depends(get_studio)) -> StepOut:
     return StepOut(**status.model_dump(), stepped=stepped, until_met=met)
 
 
+@router.post("/reset-errors", response_model=ControllerStatus,
+             summary="Reset MC errors (ResetMCError): MC common errors and the errors of all stopped axes")
+def post_reset_errors(studio: Studio = Depends(get_studio)) -> ControllerStatus:
+    studio.runner.call(lambda c: c.mc.reset_mc_errors())
+    return studio.status()
+
+
 @router.post("/reset", response_model=ControllerStatus,
              summary="Reload the project into a fresh controller (cycle 0)")
 def post_reset(studio: Studio = Depends(get_studio)) -> ControllerStatus:

@@ -54,6 +54,7 @@ class Axis(AxisPlanning):
         self.power_owner: int | None = None  # MC_Power instance in control (the later instance wins)
         self.override_owner: int | None = None
         self.servo_request = False
+        self.forced_off = False
         self.error_code = 0  # MFaultLvl.Code (0 = no minor fault)
         self.observations: dict[int, bool] = {}  # active observation codes (Obsr)
         self.reset_generation = 0  # increments each time the axis error is reset (releases FB Error outputs)
@@ -215,6 +216,7 @@ class Axis(AxisPlanning):
         elif stop == STOP_FREE_RUN:
             self.halt()
             self._release_servo()
+            self.forced_off = True
         else:
             dec = self.params.Operation.MaxDec if deceleration is None else deceleration
             job = Job(JobKind.ERROR_STOP, None, deceleration=dec)
@@ -244,8 +246,11 @@ class Axis(AxisPlanning):
     def power(self, fb_id: int, enable: bool, enable_changed: bool) -> None:
         if enable_changed or self.power_owner is None:
             self.power_owner = fb_id
+            self.forced_off = False
         if self.power_owner != fb_id or enable == self.servo_request:
             return
+        if enable and self.forced_off:
+            return  # turned OFF by the system (free-run stop): servo ON again needs a new Enable edge
         if enable:
             self.servo_request = True
             self.m.servo_req[self.i] = True
@@ -274,6 +279,7 @@ class Axis(AxisPlanning):
             if self.servo_request and not self.virtual:
                 self.servo_request = False  # the drive left Operation enabled on its own
                 self.m.servo_req[self.i] = False
+                self.forced_off = True
             self.abort_all()
             self.halt()
             self._set_state(S.Disabled)

@@ -114,7 +114,8 @@ class MotionModule:
         self._scheduled: dict[int, Axis] = {}  # jobs accepted (or changed) this period, planned in its motion stage
         self.changed: list[Any] = []  # jobs whose status changed this period (their instances are refreshed)
         self.homing_axes: dict[int, Axis] = {}
-        self.watchers: dict[int, Any] = {}  # instances watching a latch / trigger each period (by instance id)
+        self.watchers: dict[int, Any] = {}
+        self.common_reset_generation = 0  # ResetMCError: releases instances whose error has the MC common source  # instances watching a latch / trigger each period (by instance id)
         self._inv_mask = np.zeros(n, dtype=np.uint32)  # 60FDh bits whose logic is inverted (axis parameters)
         # supervision parameters per axis (refreshed when parameters are written at run time)
         self.sw_mode = np.zeros(n, dtype=np.int8)
@@ -262,6 +263,13 @@ class MotionModule:
         off = ~self.servo_on
         if off.any():
             self.cmd_pos[off] = self.act_pos[off]
+
+    def reset_mc_errors(self) -> list[str]:
+        """ResetMCError: reset MC common errors and the errors of every stopped axis. Returns axes still stopping."""
+        self.common_reset_generation += 1
+        busy = [a.name for a in self.axes if not a.reset()]
+        self.log_info(None, "MC errors reset (ResetMCError)")
+        return busy
 
     def arm_latch(self, i: int, slot: int, *, z_phase: bool) -> None:
         """Arm touch probe `slot` (1, 2) of axis i's drive on the Z phase or the external input (60B8h)."""

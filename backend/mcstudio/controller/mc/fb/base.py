@@ -276,11 +276,13 @@ class FunctionBlock:
             if k in o:
                 o[k] = False
         self._err_axis = axis
-        self._err_gen = axis.reset_generation if axis is not None else 0
+        self._err_gen = axis.reset_generation if axis is not None else self.mc.common_reset_generation
 
     def _error_released(self) -> bool:
         ax = self._err_axis
-        return ax is not None and ax.reset_generation != self._err_gen
+        if ax is None:  # MC common source: released by ResetMCError
+            return self.mc.common_reset_generation != self._err_gen
+        return ax.reset_generation != self._err_gen
 
     def fail(self, code: int, axis: Axis | None, *, fault_axis: bool = True) -> None:
         """The instruction ends in Error with `code`; the axis gets the minor fault (A-1 source Axis)."""
