@@ -114,8 +114,8 @@ class MotionModule:
         self._scheduled: dict[int, Axis] = {}  # jobs accepted (or changed) this period, planned in its motion stage
         self.changed: list[Any] = []  # jobs whose status changed this period (their instances are refreshed)
         self.homing_axes: dict[int, Axis] = {}
-        self.watchers: dict[int, Any] = {}
-        self.common_reset_generation = 0  # ResetMCError: releases instances whose error has the MC common source  # instances watching a latch / trigger each period (by instance id)
+        self.watchers: dict[int, Any] = {}  # instances watching a latch / trigger each period (by instance id)
+        self.common_reset_generation = 0  # ResetMCError: releases instances whose error has the MC common source
         self._inv_mask = np.zeros(n, dtype=np.uint32)  # 60FDh bits whose logic is inverted (axis parameters)
         # supervision parameters per axis (refreshed when parameters are written at run time)
         self.sw_mode = np.zeros(n, dtype=np.int8)
