@@ -134,6 +134,12 @@ class _Latcher:
         assert axis is not None
         m, i = self.mc, axis.i
         pos: float | None = None
+        if getattr(self, "_rearm", False):
+            # re-arm one period after disarming: the drive takes a new event on the enable edge (60B8h)
+            self._rearm = False
+            m.arm_latch(i, self._slot, z_phase=bool(self._z))
+            self._armed_cycle = m.cycle
+            return None
         if self._mode == _eMC_TRIGGER_MODE._mcController:
             trig = bool(self.inp.get("TriggerVariable"))
             if trig and not self._prev_trigger:
@@ -148,7 +154,7 @@ class _Latcher:
         if self.inp.get("WindowOnly") and not in_window(axis, pos, self.inp["FirstPosition"],
                                                          self.inp["LastPosition"]):
             if self._mode == _eMC_TRIGGER_MODE._mcDrive:
-                m.arm_latch(i, self._slot, z_phase=bool(self._z))
+                self._rearm = True
             return None
         return pos
 
