@@ -8,6 +8,7 @@ import { Notifications } from "@mantine/notifications";
 import { StrictMode } from "react";
 import { createRoot } from "react-dom/client";
 import { App } from "./App";
+import { startAxisConfig } from "./store/axisConfig";
 import { startCatalog } from "./store/catalog";
 import { startCommands } from "./store/commands";
 import { startEvents } from "./store/events";
@@ -17,6 +18,7 @@ import { theme } from "./theme";
 // Module-level services: they live as long as the page (not tied to React mounts).
 startLive();
 startCatalog();
+startAxisConfig();
 startEvents();
 startCommands();
 

@@ -10,6 +10,8 @@
  * - Jog: one MC_MoveJog instance per axis with a 0.5 s dead-man lease. While a jog button is held the enable is set
  *   once and heartbeats renew the lease every 100 ms over the WebSocket; if they stop (tab closed, network lost) the
  *   backend drops the enable and the axis decelerates.
+ * - Override: one MC_SetOverride instance per axis, created on first use (Enable TRUE); Enable and VelFactor are
+ *   patched as the slider moves, at most ~9 PATCH requests a second (the latest value always goes out).
  */
 import { ApiError, api, unwrap } from "../api/client";
 import type { FBOut } from "../api/types";
@@ -33,9 +35,21 @@ export interface AxisCommands {
   powerId: number | null;
   jogId: number | null;
   jogHeld: JogDir | null;
+  /** The MC_SetOverride instance of the axis, and what the user set (sent throttled). */
+  overrideId: number | null;
+  overrideEnable: boolean;
+  overrideFactor: number;
 }
 
-const EMPTY: AxisCommands = { last: null, powerId: null, jogId: null, jogHeld: null };
+const EMPTY: AxisCommands = {
+  last: null,
+  powerId: null,
+  jogId: null,
+  jogHeld: null,
+  overrideId: null,
+  overrideEnable: false,
+  overrideFactor: 100,
+};
 
 /** React-facing state, by axis name. */
 export const commandsStore = createStore<Readonly<Record<string, AxisCommands>>>({});
@@ -302,6 +316,88 @@ export function releaseAllJogs(): void {
   for (const [axis, j] of jogs) if (j.want !== null) jogRelease(axis);
 }
 
+// ------------------------------------------------------------------ override (MC_SetOverride)
+
+const OVERRIDE_MIN_INTERVAL_MS = 110; // ≤ 10 PATCH requests a second, with a margin
+
+interface OverrideSync {
+  /** What the controller was last told (null: nothing yet, or the instance is gone). */
+  sent: { enable: boolean; factor: number } | null;
+  busy: boolean;
+  timer: ReturnType<typeof setTimeout> | undefined;
+  lastAt: number;
+}
+
+const overrides = new Map<string, OverrideSync>();
+
+function overrideSync(axis: string): OverrideSync {
+  let o = overrides.get(axis);
+  if (!o) {
+    o = { sent: null, busy: false, timer: undefined, lastAt: 0 };
+    overrides.set(axis, o);
+  }
+  return o;
+}
+
+function scheduleOverride(axis: string): void {
+  const o = overrideSync(axis);
+  if (o.busy || o.timer !== undefined) return;
+  const wait = Math.max(0, o.lastAt + OVERRIDE_MIN_INTERVAL_MS - Date.now());
+  o.timer = setTimeout(() => {
+    o.timer = undefined;
+    void flushOverride(axis);
+  }, wait);
+}
+
+async function flushOverride(axis: string): Promise<void> {
+  const o = overrideSync(axis);
+  const c = axisCommands(commandsStore.get(), axis);
+  const want = { enable: c.overrideEnable, factor: c.overrideFactor };
+  if (o.sent && o.sent.enable === want.enable && o.sent.factor === want.factor) return;
+  o.busy = true;
+  o.lastAt = Date.now();
+  const inputs = { Enable: want.enable, VelFactor: want.factor };
+  let id = c.overrideId ?? adopt(axis, "MC_SetOverride");
+  try {
+    if (id !== null) {
+      try {
+        await unwrap(api.PATCH("/api/v1/fb/{fb_id}", { params: { path: { fb_id: id } }, body: { inputs } }));
+        patchAxis(axis, { overrideId: id });
+      } catch (err) {
+        if (!(err instanceof ApiError && err.status === 404)) throw err;
+        id = null;
+      }
+    }
+    if (id === null) {
+      const out = await unwrap(
+        api.POST("/api/v1/fb", { body: { type: "MC_SetOverride", inputs: { Axis: axis, ...inputs }, lease_s: null } }),
+      );
+      patchAxis(axis, { overrideId: out.id });
+    }
+  } catch (err) {
+    notifyError("Override (MC_SetOverride)", err);
+  } finally {
+    // Also after a failure: the same value is not retried, the next change is.
+    o.sent = want;
+    o.busy = false;
+    const now = axisCommands(commandsStore.get(), axis);
+    if (now.overrideEnable !== want.enable || now.overrideFactor !== want.factor) scheduleOverride(axis);
+  }
+}
+
+/**
+ * Set the velocity override of an axis (MC_SetOverride VelFactor in %, Enable). The value shows at once; the
+ * instance is created on first use and patched at most every 110 ms.
+ */
+export function setOverride(axis: string, change: { enable?: boolean; factor?: number }): void {
+  const cur = axisCommands(commandsStore.get(), axis);
+  patchAxis(axis, {
+    overrideEnable: change.enable ?? cur.overrideEnable,
+    overrideFactor: change.factor ?? cur.overrideFactor,
+  });
+  scheduleOverride(axis);
+}
+
 // ------------------------------------------------------------------ wiring
 
 let started = false;
@@ -331,6 +427,8 @@ export function startCommands(): void {
   onEpoch(() => {
     // The controller was replaced: its instances (and their ids) are gone.
     tracked.clear();
+    for (const o of overrides.values()) if (o.timer !== undefined) clearTimeout(o.timer);
+    overrides.clear();
     for (const j of jogs.values()) {
       j.want = null;
       j.sent = null;

@@ -24,6 +24,16 @@ export interface AxisForms {
   velAcceleration: NumValue;
   velDeceleration: NumValue;
   velDirection: string;
+  /** BufferMode enumerators of the move forms */
+  absBufferMode: string;
+  relBufferMode: string;
+  velBufferMode: string;
+  /** Inching: one MC_MoveRelative of ± this distance per press, at the jog velocity and acceleration. */
+  inchDistance: NumValue;
+  /** MC_SetPosition */
+  setPosition: NumValue;
+  /** MC_ImmediateStop StopMode: "1", "2" or "3" */
+  immediateStopMode: string;
 }
 
 export const FORM_DEFAULTS: AxisForms = {
@@ -43,6 +53,12 @@ export const FORM_DEFAULTS: AxisForms = {
   velAcceleration: 500,
   velDeceleration: 500,
   velDirection: "_mcPositiveDirection",
+  absBufferMode: "_mcAborting",
+  relBufferMode: "_mcAborting",
+  velBufferMode: "_mcAborting",
+  inchDistance: 1,
+  setPosition: 0,
+  immediateStopMode: "1",
 };
 
 export const formsStore = createStore<Readonly<Record<string, AxisForms>>>({});

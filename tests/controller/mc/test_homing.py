@@ -218,3 +218,27 @@ def test_home_with_parameter_out_of_range_is_5700(member: str, value: Any, detai
     c.step(1)
     assert h.Error and h.ErrorID == 0x5700
     assert any(e.code == "57000000" and f"attached information {detail}:" in e.detail for e in c.events.list())
+
+
+@pytest.mark.parametrize("mode", ["_mcHomeSwTurnHomeSwOff", "_mcHomeSwOff", "_mcHomeSwTurnHomeMask"])
+def test_limit_reversal_turns_back_after_passing_the_dog(mode: str) -> None:
+    """Started between the dog and the limit in the detection direction: the axis reverses at that limit, passes
+    the dog against the detection direction, turns back once the dog is OFF and homes on it — it does not travel
+    on to the far limit (D20)."""
+    c = Controller(axis_project(sensors=SENSORS, Homing={**BASE, "Mode": mode, "HomeInputMaskDistance": 12.0}))
+    power_on(c)
+    mv = c.fb("MC_MoveAbsolute", Axis="MC_Axis000", Execute=True, Position=45.0, Velocity=200.0,
+              Acceleration=2000.0, Deceleration=2000.0)
+    step_until(c, mv, "Done")
+    h = c.fb("MC_Home", Axis="MC_Axis000", Execute=True)
+    lowest = 45.0
+    for _ in range(2000):  # 20 s of 10-period chunks
+        c.step(10, Until(h.id, "Busy", False))
+        lowest = min(lowest, _physical(c))
+        if not h.Busy:
+            break
+    assert h.Done and not h.Error
+    # turned back within a deceleration distance (100 mm/s at 2000 mm/s²: 2.5 mm) of the dog's lower edge
+    assert 20.0 - 2.5 - 0.2 < lowest < 20.0
+    expected = _z_after(32.0) if mode == "_mcHomeSwTurnHomeMask" else _z_after(30.0)
+    assert _physical(c) == pytest.approx(expected, abs=1.5 / PPU)

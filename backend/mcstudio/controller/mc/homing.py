@@ -308,17 +308,27 @@ class Homing:
     # ------------------------------------------------------------------ phase handlers
     def _on_search(self, din: int, prox: bool, rising: bool, falling: bool) -> None:
         p = self.p
-        if p.mode in PROX_MODES and rising and self.dir == p.detect_dir:
+        if p.mode not in PROX_MODES:
+            return
+        if rising and self.dir == p.detect_dir:
             self._approach()
+        elif falling and self.dir == -p.detect_dir and self.limits_reversed:
+            # Reversed at a limit and passed the whole dog against the detection direction: that is the end of a
+            # retreat — turn back and find the dog in the detection direction instead of travelling on to the
+            # other limit (docs/decisions.md D20).
+            self._end_retreat()
 
     def _on_retreat(self, din: int, prox: bool, rising: bool, falling: bool) -> None:
         if not prox:
-            # off the dog: back in the detection direction — modes 0/1 at the homing velocity, 9/12 at the
-            # approach velocity (MC_Home mode descriptions)
-            p = self.p
-            self.phase = Phase.SEARCH
-            fast = p.mode in (M._mcHomeSwTurnHomeSwOff, M._mcHomeSwTurnHomeSwOn)
-            self._run(p.detect_dir, p.vel if fast else p.approach_vel)
+            self._end_retreat()
+
+    def _end_retreat(self) -> None:
+        """Off the dog: back in the detection direction — modes 0/1 (and 4/5) at the homing velocity, 9/12 at the
+        approach velocity (MC_Home mode descriptions)."""
+        p = self.p
+        self.phase = Phase.SEARCH
+        slow = p.mode in (M._mcHomeSwTurnHomeMask, M._mcHomeSwTurnHoldingTime)
+        self._run(p.detect_dir, p.approach_vel if slow else p.vel)
 
     def _on_reversing(self, din: int, prox: bool, rising: bool, falling: bool) -> None:
         if not self._stopped():

@@ -14,9 +14,9 @@ interface NumFieldProps {
   w?: number | string;
 }
 
-/** A compact number input with its unit at the right end of the field. */
+/** A compact number input with its unit at the right end of the field (none when `unit` is empty). */
 export function NumField({ label, ariaLabel, unit, value, onChange, testId, disabled, w }: NumFieldProps) {
-  const unitWidth = Math.max(30, Math.round(unit.length * 6.5) + 16);
+  const unitWidth = unit ? Math.max(32, Math.round(unit.length * 7) + 22) : 10;
   return (
     <NumberInput
       label={label}
@@ -29,9 +29,11 @@ export function NumField({ label, ariaLabel, unit, value, onChange, testId, disa
       allowDecimal
       thousandSeparator={false}
       rightSection={
-        <Text size="xs" c="dimmed" pr={7} style={{ pointerEvents: "none", whiteSpace: "nowrap" }}>
-          {unit}
-        </Text>
+        unit ? (
+          <Text size="xs" c="dimmed" pr={7} style={{ pointerEvents: "none", whiteSpace: "nowrap" }}>
+            {unit}
+          </Text>
+        ) : null
       }
       rightSectionWidth={unitWidth}
       rightSectionPointerEvents="none"

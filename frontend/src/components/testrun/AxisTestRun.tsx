@@ -1,16 +1,88 @@
-import { Badge, Box, Button, Center, Group, Loader, Stack, Text, Tooltip } from "@mantine/core";
-import { IconHandStop, IconPower, IconRotateClockwise2 } from "@tabler/icons-react";
-import { useMemo, useState } from "react";
+import { ActionIcon, Badge, Box, Button, Center, Group, Loader, NativeSelect, Stack, Text, Tooltip } from "@mantine/core";
+import { IconAlertOctagon, IconHandStop, IconPower, IconRotateClockwise2, IconSettings } from "@tabler/icons-react";
+import { type ReactNode, useMemo, useState } from "react";
 import type { AxisSummary } from "../../api/types";
 import { useAxisList, useAxisSummary, useLive } from "../../hooks/useLive";
 import { type AxisUnits, axisState, axisTypeLabel, axisUnits, stateColor } from "../../lib/format";
-import { resetAxis, setServo, stopAxis } from "../../store/commands";
-import { axisForms, num } from "../../store/forms";
+import { issue, resetAxis, setServo, stopAxis } from "../../store/commands";
+import { axisForms, num, setFormField, useAxisForms } from "../../store/forms";
+import { openSettingsTab } from "../../store/tabs";
 import { AxisChart } from "./AxisChart";
+import { HomingPanel } from "./HomingPanel";
 import { JogPanel } from "./JogPanel";
 import { LastInstructionPanel } from "./LastInstructionPanel";
 import { AxisErrorPanel, PositionPanel, StatusPanel } from "./LivePanels";
 import { MoveForms } from "./MoveForms";
+import { OverridePanel } from "./OverridePanel";
+
+const STOP_MODES = [
+  { value: "1", label: "StopMode 1" },
+  { value: "2", label: "StopMode 2" },
+  { value: "3", label: "StopMode 3" },
+];
+
+function Labeled({ label, children }: { label: string; children: ReactNode }) {
+  return (
+    <Stack gap={0} style={{ flex: "none" }}>
+      <Text size="10px" c="dimmed" tt="uppercase">
+        {label}
+      </Text>
+      {children}
+    </Stack>
+  );
+}
+
+function HomedBadge({ axis }: { axis: string }) {
+  const homed = useLive((s) => s.axes[axis]?.Details.Homed ?? null);
+  return (
+    <Labeled label="Home">
+      <Tooltip label="Details.Homed: home is defined">
+        <Badge size="lg" variant={homed ? "filled" : "outline"} color={homed ? "teal" : "orange"} miw={92}
+          style={{ textTransform: "none" }}>
+          <span data-testid="homed" data-active={homed ? "true" : "false"}>
+            {homed === null ? "—" : homed ? "Homed" : "Not homed"}
+          </span>
+        </Badge>
+      </Tooltip>
+    </Labeled>
+  );
+}
+
+/** MC_ImmediateStop with the chosen StopMode: the axis goes to ErrorStop (5485) until Reset. */
+function ImmediateStop({ axis }: { axis: string }) {
+  const mode = useAxisForms(axis).immediateStopMode;
+  const [busy, setBusy] = useState(false);
+  const run = async () => {
+    setBusy(true);
+    await issue(axis, "MC_ImmediateStop", { StopMode: Number(axisForms(axis).immediateStopMode) });
+    setBusy(false);
+  };
+  return (
+    <Group gap={0} wrap="nowrap">
+      <Tooltip
+        label="StopMode — 1: immediate stop · 2: immediate stop and following error reset · 3: free-run stop (servo OFF)"
+        multiline
+        w={260}
+      >
+        <NativeSelect
+          aria-label="Immediate stop mode"
+          data={STOP_MODES}
+          value={mode}
+          onChange={(e) => setFormField(axis, "immediateStopMode", e.currentTarget.value)}
+          data-testid="immediate-stop-mode"
+          w={116}
+          styles={{ input: { borderTopRightRadius: 0, borderBottomRightRadius: 0, borderRight: 0 } }}
+        />
+      </Tooltip>
+      <Tooltip label="MC_ImmediateStop: stop at once; the axis goes to ErrorStop (5485), Reset clears it">
+        <Button data-testid="immediate-stop-button" color="red.8" leftSection={<IconAlertOctagon size={14} />}
+          loading={busy} onClick={() => void run()} style={{ borderTopLeftRadius: 0, borderBottomLeftRadius: 0 }}>
+          Immediate stop
+        </Button>
+      </Tooltip>
+    </Group>
+  );
+}
 
 function HeaderBar({ axis }: { axis: AxisSummary }) {
   const name = axis.name;
@@ -38,18 +110,26 @@ function HeaderBar({ axis }: { axis: AxisSummary }) {
   };
 
   return (
-    <Group justify="space-between" wrap="nowrap" gap="sm" px="sm" py={6} className="panel">
-      <Group gap="md" wrap="nowrap" style={{ minWidth: 0 }}>
+    <Group justify="space-between" wrap="wrap" gap="6px 12px" px="sm" py={6} className="panel testrun-header">
+      <Group gap="md" wrap="nowrap" style={{ minWidth: 0, flex: "1 1 auto" }}>
         <Stack gap={0} style={{ minWidth: 0 }}>
-          <Text fw={700} size="md" truncate="end">
-            {name}
-          </Text>
-          <Text size="xs" c="dimmed" style={{ whiteSpace: "nowrap" }}>
+          <Group gap={4} wrap="nowrap">
+            <Text fw={700} size="md" truncate="end">
+              {name}
+            </Text>
+            <Tooltip label="Axis settings">
+              <ActionIcon size="sm" color="gray" aria-label={`Axis settings of ${name}`} onClick={() => openSettingsTab(name)}
+                data-testid="open-settings">
+                <IconSettings size={15} />
+              </ActionIcon>
+            </Tooltip>
+          </Group>
+          <Text size="xs" c="dimmed" truncate="end" title={axis.node_address !== null ? `EtherCAT node ${axis.node_address}` : undefined}>
             Axis {axis.number} · {axisTypeLabel(axis.type)}
-            {axis.node_address !== null ? ` · EtherCAT node ${axis.node_address}` : ""}
+            {axis.node_address !== null ? ` · node ${axis.node_address}` : ""}
           </Text>
         </Stack>
-        <Stack gap={0}>
+        <Stack gap={0} style={{ flex: "none" }}>
           <Text size="10px" c="dimmed" tt="uppercase">
             State
           </Text>
@@ -57,7 +137,7 @@ function HeaderBar({ axis }: { axis: AxisSummary }) {
             <span data-testid="axis-state">{state ?? "—"}</span>
           </Badge>
         </Stack>
-        <Stack gap={0}>
+        <Stack gap={0} style={{ flex: "none" }}>
           <Text size="10px" c="dimmed" tt="uppercase">
             Servo
           </Text>
@@ -65,8 +145,9 @@ function HeaderBar({ axis }: { axis: AxisSummary }) {
             <span data-testid="servo-status">{servoOn === null ? "—" : servoOn ? "ON" : "OFF"}</span>
           </Badge>
         </Stack>
+        <HomedBadge axis={name} />
       </Group>
-      <Group gap={6} wrap="nowrap">
+      <Group gap={6} wrap="nowrap" ml="auto">
         <Button
           data-testid="servo-toggle"
           leftSection={<IconPower size={14} />}
@@ -85,6 +166,7 @@ function HeaderBar({ axis }: { axis: AxisSummary }) {
             Stop
           </Button>
         </Tooltip>
+        <ImmediateStop axis={name} />
         <Tooltip label="MC_Reset: clear the axis error">
           <Button data-testid="reset-button" variant="default" leftSection={<IconRotateClockwise2 size={14} />}
             loading={resetBusy} onClick={() => void reset()}>
@@ -104,6 +186,8 @@ function TestRunBody({ axis, units }: { axis: AxisSummary; units: AxisUnits }) {
         <Stack gap={8} style={{ flex: "1 1 600px", minWidth: 560 }}>
           <JogPanel axis={axis.name} units={units} />
           <MoveForms axis={axis.name} units={units} />
+          <OverridePanel axis={axis.name} />
+          <HomingPanel axis={axis.name} units={units} />
           <LastInstructionPanel axis={axis.name} />
         </Stack>
         <Stack gap={8} style={{ flex: "1 1 420px", minWidth: 400 }}>
@@ -117,7 +201,10 @@ function TestRunBody({ axis, units }: { axis: AxisSummary; units: AxisUnits }) {
   );
 }
 
-/** The MC test-run panel of one axis: servo, jog, moves, stop/reset, live status and a trend chart. */
+/**
+ * The MC test-run panel of one axis: servo, jog and inching, moves, override, homing, stop / immediate stop / reset,
+ * live status and a trend chart.
+ */
 export function AxisTestRun({ axis }: { axis: string }) {
   const summary = useAxisSummary(axis);
   const { status } = useAxisList();

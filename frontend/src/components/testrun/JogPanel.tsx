@@ -1,9 +1,10 @@
-import { Group, Text } from "@mantine/core";
-import { IconArrowLeft, IconArrowRight } from "@tabler/icons-react";
+import { Button, Divider, Group, Text, Tooltip } from "@mantine/core";
+import { IconArrowLeft, IconArrowRight, IconChevronLeft, IconChevronRight } from "@tabler/icons-react";
+import { useState } from "react";
 import { useAxisCommands, useFb } from "../../hooks/useLive";
 import type { AxisUnits } from "../../lib/format";
 import { notifyError } from "../../lib/notify";
-import { type JogDir, jogPress, jogRelease } from "../../store/commands";
+import { type JogDir, issue, jogPress, jogRelease } from "../../store/commands";
 import { axisForms, num, setFormField, useAxisForms } from "../../store/forms";
 import { Led } from "../common/Led";
 import { NumField } from "../common/NumField";
@@ -27,7 +28,57 @@ function JogStatus({ id }: { id: number | null }) {
   );
 }
 
-/** MC_MoveJog with a dead-man lease: hold − / + to jog. */
+/** Inching: one MC_MoveRelative of ± the step per click, at the jog velocity and acceleration. */
+function Inching({ axis, unit }: { axis: string; unit: string }) {
+  const f = useAxisForms(axis);
+  const [busy, setBusy] = useState<JogDir | null>(null);
+
+  const inch = async (dir: JogDir) => {
+    const forms = axisForms(axis);
+    const d = num(forms.inchDistance);
+    const v = num(forms.jogVelocity);
+    const a = num(forms.jogAcceleration);
+    if (d === null || v === null || a === null) {
+      notifyError("Inching", new Error("enter numbers for the step, the jog velocity and the acceleration"));
+      return;
+    }
+    setBusy(dir);
+    await issue(axis, "MC_MoveRelative", {
+      Distance: dir === "plus" ? Math.abs(d) : -Math.abs(d),
+      Velocity: v,
+      Acceleration: a,
+      Deceleration: a,
+      Jerk: 0,
+    });
+    setBusy(null);
+  };
+
+  return (
+    <Group gap={8} align="flex-end" wrap="nowrap">
+      <NumField label="Inching step" unit={unit} value={f.inchDistance} testId="inch-distance"
+        onChange={(v) => setFormField(axis, "inchDistance", v)} w={130} />
+      <Text size="11px" c="dimmed" pb={6} style={{ flex: 1, minWidth: 0 }} lineClamp={2}>
+        One MC_MoveRelative per click, at the jog velocity and acceleration.
+      </Text>
+      <Group gap={6} wrap="nowrap">
+        <Tooltip label="MC_MoveRelative by −step">
+          <Button variant="default" data-testid="inch-minus" leftSection={<IconChevronLeft size={14} />} miw={84}
+            loading={busy === "minus"} onClick={() => void inch("minus")}>
+            Inch −
+          </Button>
+        </Tooltip>
+        <Tooltip label="MC_MoveRelative by +step">
+          <Button variant="default" data-testid="inch-plus" rightSection={<IconChevronRight size={14} />} miw={84}
+            loading={busy === "plus"} onClick={() => void inch("plus")}>
+            Inch +
+          </Button>
+        </Tooltip>
+      </Group>
+    </Group>
+  );
+}
+
+/** MC_MoveJog with a dead-man lease: hold − / + to jog; inching steps with MC_MoveRelative. */
 export function JogPanel({ axis, units }: { axis: string; units: AxisUnits }) {
   const f = useAxisForms(axis);
   const cmds = useAxisCommands(axis);
@@ -46,7 +97,7 @@ export function JogPanel({ axis, units }: { axis: string; units: AxisUnits }) {
 
   return (
     <Panel
-      title="Jog (MC_MoveJog, hold to move)"
+      title="Jog (MC_MoveJog, hold to move) and inching"
       right={<JogStatus id={cmds.jogId} />}
       testId="jog-panel"
     >
@@ -66,6 +117,8 @@ export function JogPanel({ axis, units }: { axis: string; units: AxisUnits }) {
           </HoldButton>
         </Group>
       </Group>
+      <Divider my={6} color="gray.2" />
+      <Inching axis={axis} unit={units.pos} />
     </Panel>
   );
 }

@@ -74,10 +74,28 @@ function FlagRow({ label, children }: { label: string; children: ReactNode }) {
 
 const STATE_COLORS: Record<string, string> = { ErrorStop: "red", Stopping: "orange", Disabled: "gray", Standstill: "teal" };
 const DETAILS = ["Idle", "InPosWaiting", "Homed", "InHome", "VelLimit"] as const;
-const DRV = ["ServoOn", "Ready", "MainPower", "P_OT", "N_OT", "HomeSw", "DrvAlarm", "DrvWarning", "ILA", "CSP", "CSV", "CST"] as const;
+const DRV = [
+  "ServoOn",
+  "Ready",
+  "MainPower",
+  "P_OT",
+  "N_OT",
+  "HomeSw",
+  "Home",
+  "ImdStop",
+  "Latch1",
+  "Latch2",
+  "DrvAlarm",
+  "DrvWarning",
+  "ILA",
+  "CSP",
+  "CSV",
+  "CST",
+] as const;
 
 function drvColor(name: (typeof DRV)[number]): string {
-  if (name === "DrvAlarm" || name === "P_OT" || name === "N_OT") return "red";
+  if (name === "DrvAlarm" || name === "P_OT" || name === "N_OT" || name === "ImdStop") return "red";
+  if (name === "HomeSw" || name === "Home" || name === "Latch1" || name === "Latch2") return "violet";
   if (name === "DrvWarning" || name === "ILA") return "yellow";
   return "teal";
 }
@@ -110,9 +128,40 @@ export function StatusPanel({ axis }: { axis: string }) {
   );
 }
 
+/** An error or observation code in a framed box. */
+function CodeBox({ label, code, active, color, testId }: {
+  label: string;
+  code: string;
+  active: boolean;
+  color: string;
+  testId: string;
+}) {
+  return (
+    <Box
+      px={8}
+      py={2}
+      w={64}
+      style={{
+        borderRadius: 4,
+        background: active ? `var(--mantine-color-${color}-0)` : "var(--mantine-color-gray-0)",
+        border: `1px solid var(--mantine-color-${active ? `${color}-4` : "gray-3"})`,
+        flex: "none",
+      }}
+    >
+      <Text size="10px" c="dimmed" tt="uppercase">
+        {label}
+      </Text>
+      <Text size="md" fw={700} className="num" c={active ? `${color}.8` : "dimmed"} data-testid={testId}>
+        {code}
+      </Text>
+    </Box>
+  );
+}
+
 /**
  * The axis error: the minor fault of the axis (MFaultLvl) or, when the axis has none, the ErrorID of an instruction
- * of this axis that ended with Error. Its meaning comes from the ErrorID catalogue (GET /api/v1/errors).
+ * of this axis that ended with Error; and the observation (Obsr, warnings such as 6460 following error warning).
+ * Meanings come from the ErrorID catalogue (GET /api/v1/errors).
  */
 export function AxisErrorPanel({ axis }: { axis: string }) {
   const fault = useAxisVars(axis)?.MFaultLvl;
@@ -131,11 +180,12 @@ export function AxisErrorPanel({ axis }: { axis: string }) {
   const info = useErrorInfo(code === "0000" ? null : code);
   const hasError = code !== "0000";
   const meaning = hasError ? (info ? `${info.name}. ${info.correction}` : "Unknown ErrorID (not in the error catalogue)") : "";
-  const obsrInfo = useErrorInfo(obsr?.Active ? obsr.Code : null);
+  const obsrCode = (obsr?.Active ? obsr.Code : "0000").toUpperCase();
+  const obsrInfo = useErrorInfo(obsr?.Active ? obsrCode : null);
 
   return (
     <Panel
-      title="Axis error"
+      title="Axis error and observation"
       testId="error-panel"
       right={
         <Group gap={10} wrap="nowrap">
@@ -144,46 +194,43 @@ export function AxisErrorPanel({ axis }: { axis: string }) {
         </Group>
       }
     >
-      <Group gap={10} wrap="nowrap" align="flex-start">
-        <Box
-          px={8}
-          py={2}
-          style={{
-            borderRadius: 4,
-            background: hasError ? "var(--mantine-color-red-0)" : "var(--mantine-color-gray-0)",
-            border: `1px solid var(--mantine-color-${hasError ? "red-4" : "gray-3"})`,
-            flex: "none",
-          }}
-        >
-          <Text size="10px" c="dimmed" tt="uppercase">
-            ErrorID
-          </Text>
-          <Text size="md" fw={700} className="num" c={hasError ? "red.8" : "dimmed"} data-testid="error-id">
-            {code}
-          </Text>
-        </Box>
-        <Stack gap={2} style={{ minWidth: 0, flex: 1 }}>
-          <Text size="xs" c={hasError ? "red.9" : "dimmed"} data-testid="error-meaning" style={{ minHeight: 16 }}>
-            {meaning}
-          </Text>
-          {!hasError && (
-            <Text size="xs" c="dimmed">
-              No error.
+      <Stack gap={6}>
+        <Group gap={10} wrap="nowrap" align="flex-start">
+          <CodeBox label="ErrorID" code={code} active={hasError} color="red" testId="error-id" />
+          <Stack gap={2} style={{ minWidth: 0, flex: 1 }}>
+            <Text size="xs" c={hasError ? "red.9" : "dimmed"} data-testid="error-meaning" style={{ minHeight: 16 }}>
+              {meaning}
             </Text>
-          )}
-          {hasError && info && (
-            <Text size="10px" c="dimmed">
-              Event code {info.event_code} · {info.level} · cause: {info.cause}
+            {!hasError && (
+              <Text size="xs" c="dimmed">
+                No error.
+              </Text>
+            )}
+            {hasError && info && (
+              <Text size="10px" c="dimmed">
+                Event code {info.event_code} · {info.level} · cause: {info.cause}
+              </Text>
+            )}
+          </Stack>
+        </Group>
+        <Group gap={10} wrap="nowrap" align="flex-start">
+          <CodeBox label="Obsr" code={obsrCode} active={obsr?.Active ?? false} color="yellow" testId="obsr-code" />
+          <Stack gap={2} style={{ minWidth: 0, flex: 1 }}>
+            <Text size="xs" c={obsr?.Active ? "yellow.9" : "dimmed"} data-testid="obsr-meaning" style={{ minHeight: 16 }}>
+              {obsr?.Active
+                ? obsrInfo
+                  ? `${obsrInfo.name}. ${obsrInfo.correction}`
+                  : "Unknown observation code (not in the error catalogue)"
+                : "No observation (warning)."}
             </Text>
-          )}
-          {obsr?.Active && (
-            <Text size="xs" c="yellow.9" data-testid="obsr-code">
-              Observation {obsr.Code}
-              {obsrInfo ? `: ${obsrInfo.name}` : ""}
-            </Text>
-          )}
-        </Stack>
-      </Group>
+            {obsr?.Active && obsrInfo && (
+              <Text size="10px" c="dimmed">
+                Event code {obsrInfo.event_code} · {obsrInfo.level} · cause: {obsrInfo.cause}
+              </Text>
+            )}
+          </Stack>
+        </Group>
+      </Stack>
     </Panel>
   );
 }

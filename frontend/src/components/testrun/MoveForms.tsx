@@ -1,6 +1,7 @@
 import { Box, Button, NativeSelect, Text } from "@mantine/core";
 import { IconPlayerPlay } from "@tabler/icons-react";
 import { type FormEvent, Fragment, useState } from "react";
+import { useInputEnumerators } from "../../hooks/useSchema";
 import type { AxisUnits } from "../../lib/format";
 import { notifyError } from "../../lib/notify";
 import { issue } from "../../store/commands";
@@ -22,6 +23,7 @@ interface MoveDef {
   title: string;
   type: string;
   executeTestId: string;
+  bufferKey: "absBufferMode" | "relBufferMode" | "velBufferMode";
   /** Five columns: Position/Distance (or the direction select), Velocity, Acceleration, Deceleration, Jerk. */
   fields: (FieldDef | "direction" | null)[];
   extra?: (forms: AxisForms) => Record<string, unknown>;
@@ -32,6 +34,7 @@ const MOVES: MoveDef[] = [
     title: "Absolute",
     type: "MC_MoveAbsolute",
     executeTestId: "abs-execute",
+    bufferKey: "absBufferMode",
     fields: [
       { key: "absPosition", input: "Position", testId: "abs-position", unit: "pos" },
       { key: "absVelocity", input: "Velocity", testId: "abs-velocity", unit: "vel" },
@@ -44,6 +47,7 @@ const MOVES: MoveDef[] = [
     title: "Relative",
     type: "MC_MoveRelative",
     executeTestId: "rel-execute",
+    bufferKey: "relBufferMode",
     fields: [
       { key: "relDistance", input: "Distance", testId: "rel-distance", unit: "pos" },
       { key: "relVelocity", input: "Velocity", testId: "rel-velocity", unit: "vel" },
@@ -56,6 +60,7 @@ const MOVES: MoveDef[] = [
     title: "Velocity",
     type: "MC_MoveVelocity",
     executeTestId: "vel-execute",
+    bufferKey: "velBufferMode",
     fields: [
       "direction",
       { key: "velVelocity", input: "Velocity", testId: "vel-velocity", unit: "vel" },
@@ -67,7 +72,42 @@ const MOVES: MoveDef[] = [
   },
 ];
 
-const COLUMNS = ["Position / dist.", "Velocity", "Acceleration", "Deceleration", "Jerk"];
+const COLUMNS: { label: string; unit: keyof AxisUnits | null }[] = [
+  { label: "Pos. / dist.", unit: "pos" },
+  { label: "Velocity", unit: "vel" },
+  { label: "Acc.", unit: "acc" },
+  { label: "Dec.", unit: "acc" },
+  { label: "Jerk", unit: "jerk" },
+  { label: "BufferMode", unit: null },
+];
+
+/** `_mcBlendingPrevious` → `Blend previous` (the select is narrow; the option title has the enumerator). */
+function bufferLabel(name: string): string {
+  return name
+    .replace(/^_mc/, "")
+    .replace(/^Blending(\w)/, (_m, c: string) => `Blend ${c.toLowerCase()}`);
+}
+
+function BufferModeSelect({ axis, def }: { axis: string; def: MoveDef }) {
+  const value = useAxisForms(axis)[def.bufferKey];
+  const enums = useInputEnumerators(def.type, "BufferMode");
+  const data = (enums.length ? enums : [{ name: "_mcAborting", value: 0 }]).map((e) => ({
+    value: e.name,
+    label: bufferLabel(e.name),
+  }));
+  return (
+    <NativeSelect
+      aria-label={`${def.title} move BufferMode`}
+      title={value}
+      data={data}
+      value={value}
+      onChange={(e) => setFormField(axis, def.bufferKey, e.currentTarget.value)}
+      data-testid={`${def.executeTestId.split("-")[0]}-buffer-mode`}
+      rightSectionWidth={20}
+      styles={{ input: { paddingLeft: 8, paddingRight: 20 } }}
+    />
+  );
+}
 
 const DIRECTIONS = [
   { value: "_mcPositiveDirection", label: "Positive" },
@@ -94,6 +134,7 @@ function MoveRow({ axis, units, def }: { axis: string; units: AxisUnits; def: Mo
       inputs[fd.input] = v;
     }
     Object.assign(inputs, def.extra?.(forms));
+    inputs.BufferMode = forms[def.bufferKey];
     setBusy(true);
     await issue(axis, def.type, inputs);
     setBusy(false);
@@ -115,20 +156,23 @@ function MoveRow({ axis, units, def }: { axis: string; units: AxisUnits; def: Mo
               value={f.velDirection}
               onChange={(e) => setFormField(axis, "velDirection", e.currentTarget.value)}
               data-testid="vel-direction"
+              rightSectionWidth={18}
+              styles={{ input: { paddingLeft: 6, paddingRight: 18 } }}
             />
           );
         }
         return (
           <NumField
             key={fd.key}
-            ariaLabel={`${def.title} move ${fd.input}`}
-            unit={units[fd.unit]}
+            ariaLabel={`${def.title} move ${fd.input} [${units[fd.unit]}]`}
+            unit=""
             value={f[fd.key]}
             testId={fd.testId}
             onChange={(v) => setFormField(axis, fd.key, v)}
           />
         );
       })}
+      <BufferModeSelect axis={axis} def={def} />
       <Button type="submit" data-testid={def.executeTestId} leftSection={<IconPlayerPlay size={12} />} loading={busy}
         px={10}>
         Execute
@@ -137,14 +181,17 @@ function MoveRow({ axis, units, def }: { axis: string; units: AxisUnits; def: Mo
   );
 }
 
-/** Absolute, relative and velocity moves: each Execute creates a new instance with Execute TRUE. */
+/**
+ * Absolute, relative and velocity moves: each Execute creates a new instance with Execute TRUE, with the row's
+ * BufferMode (Aborting, Buffered or a Blending mode; the options are those the instruction accepts per fb-types).
+ */
 export function MoveForms({ axis, units }: { axis: string; units: AxisUnits }) {
   return (
     <Panel title="Positioning (MC_MoveAbsolute, MC_MoveRelative, MC_MoveVelocity)" testId="move-panel">
       <Box
         style={{
           display: "grid",
-          gridTemplateColumns: "58px repeat(5, minmax(0, 1fr)) auto",
+          gridTemplateColumns: "58px minmax(0, 1.4fr) repeat(4, minmax(0, 1fr)) 116px auto",
           columnGap: 6,
           rowGap: 6,
           alignItems: "center",
@@ -152,9 +199,14 @@ export function MoveForms({ axis, units }: { axis: string; units: AxisUnits }) {
       >
         <Box />
         {COLUMNS.map((c) => (
-          <Text key={c} size="11px" c="gray.7" truncate="end" title={c}>
-            {c}
-          </Text>
+          <Box key={c.label} style={{ minWidth: 0, lineHeight: 1.15 }}>
+            <Text size="11px" c="gray.7" truncate="end" title={c.label}>
+              {c.label}
+            </Text>
+            <Text size="10px" c="dimmed" truncate="end">
+              {c.unit ? units[c.unit] : "on multi-execution"}
+            </Text>
+          </Box>
         ))}
         <Box />
         {MOVES.map((m) => (

@@ -1,10 +1,18 @@
-import { Badge, Box, Loader, NavLink, ScrollArea, Text } from "@mantine/core";
-import { IconAxisX, IconBox, IconCpu, IconFolder, IconTable } from "@tabler/icons-react";
+import { ActionIcon, Badge, Box, Loader, NavLink, ScrollArea, Text, Tooltip } from "@mantine/core";
+import { IconAxisX, IconBox, IconCpu, IconFolder, IconSettings, IconTable } from "@tabler/icons-react";
 import type { AxisSummary } from "../../api/types";
 import { useAxisList, useAxisVars, useLive } from "../../hooks/useLive";
 import { axisState, axisTypeLabel, stateColor } from "../../lib/format";
 import { useStore } from "../../store/createStore";
-import { TAB_3D, activateTab, axisTabKey, openAxisTab, tabsStore } from "../../store/tabs";
+import {
+  TAB_3D,
+  activateTab,
+  axisTabKey,
+  openAxisTab,
+  openSettingsTab,
+  settingsTabKey,
+  tabsStore,
+} from "../../store/tabs";
 
 function StateBadge({ name }: { name: string }) {
   const vars = useAxisVars(name);
@@ -17,31 +25,50 @@ function StateBadge({ name }: { name: string }) {
   );
 }
 
-function AxisEntry({ axis, active }: { axis: AxisSummary; active: boolean }) {
+function AxisEntry({ axis, active, settingsActive }: { axis: AxisSummary; active: boolean; settingsActive: boolean }) {
   return (
-    <NavLink
-      data-testid={`nav-axis-${axis.name}`}
-      active={active}
-      onClick={() => openAxisTab(axis.name)}
-      label={
-        <Text size="xs" fw={600} truncate="end">
-          {axis.name}
-        </Text>
-      }
-      description={
-        <Text size="10px" c="dimmed" truncate="end">
-          {axisTypeLabel(axis.type)}
-          {axis.node_address !== null ? ` · node ${axis.node_address}` : ""}
-        </Text>
-      }
-      leftSection={<IconAxisX size={15} />}
-      rightSection={<StateBadge name={axis.name} />}
-      py={3}
-    />
+    <Box style={{ display: "flex", alignItems: "center" }}>
+      <NavLink
+        style={{ flex: 1, minWidth: 0 }}
+        data-testid={`nav-axis-${axis.name}`}
+        active={active}
+        onClick={() => openAxisTab(axis.name)}
+        label={
+          <Text size="xs" fw={600} truncate="end" title={axis.name}>
+            {axis.name}
+          </Text>
+        }
+        description={
+          <Text size="10px" c="dimmed" truncate="end">
+            {axisTypeLabel(axis.type)}
+            {axis.node_address !== null ? ` · node ${axis.node_address}` : ""}
+          </Text>
+        }
+        leftSection={<IconAxisX size={15} />}
+        rightSection={<StateBadge name={axis.name} />}
+        py={3}
+        pl={8}
+        pr={4}
+        styles={{ section: { marginInlineEnd: 6 } }}
+      />
+      <Tooltip label={`Axis settings of ${axis.name}`} position="right" openDelay={300}>
+        <ActionIcon
+          size="sm"
+          variant={settingsActive ? "light" : "subtle"}
+          color={settingsActive ? "blue" : "gray"}
+          aria-label={`Axis settings of ${axis.name}`}
+          data-testid={`nav-axis-settings-${axis.name}`}
+          onClick={() => openSettingsTab(axis.name)}
+          mr={2}
+        >
+          <IconSettings size={14} />
+        </ActionIcon>
+      </Tooltip>
+    </Box>
   );
 }
 
-/** The project tree: controller, axes (each opens its test-run tab) and the 3D view. */
+/** The project tree: controller, axes (each opens its test-run tab; the gear opens its settings) and the 3D view. */
 export function ProjectTree() {
   const project = useLive((s) => s.controller?.project ?? null);
   const period = useLive((s) => s.controller?.period_s ?? null);
@@ -101,7 +128,12 @@ export function ProjectTree() {
               </Text>
             )}
             {axes.map((a) => (
-              <AxisEntry key={a.name} axis={a} active={active === axisTabKey(a.name)} />
+              <AxisEntry
+                key={a.name}
+                axis={a}
+                active={active === axisTabKey(a.name)}
+                settingsActive={active === settingsTabKey(a.name)}
+              />
             ))}
           </NavLink>
           <NavLink
