@@ -100,6 +100,11 @@ def test_acceptance_velocity_zero_is_5422(client: TestClient) -> None:
         ({"type": "MC_Teleport", "inputs": {}}, ["body", "type"]),
         ({"type": "MC_Power", "inputs": {}, "lease_s": -1}, ["body", "lease_s"]),
         ({"inputs": {}}, ["body", "type"]),
+        # a misspelt structure member is named, not silently replaced by its default
+        ({"type": "MC_TouchProbe", "inputs": {"TriggerInput": {"Mode": "_mcDrive", "InputDrv": "_mcEXT"}}},
+         ["body", "inputs", "TriggerInput"]),
+        ({"type": "MC_HomeWithParameter", "inputs": {"HomingParameter": {"HomeVel": 10.0}}},
+         ["body", "inputs", "HomingParameter"]),
     ],
 )
 def test_bad_fb_requests_name_the_field(client: TestClient, body: dict, loc: list) -> None:

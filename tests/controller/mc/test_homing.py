@@ -242,3 +242,13 @@ def test_limit_reversal_turns_back_after_passing_the_dog(mode: str) -> None:
     assert 20.0 - 2.5 - 0.2 < lowest < 20.0
     expected = _z_after(32.0) if mode == "_mcHomeSwTurnHomeMask" else _z_after(30.0)
     assert _physical(c) == pytest.approx(expected, abs=1.5 / PPU)
+
+
+def test_struct_member_names_match_the_instruction_tables() -> None:
+    """The member names the input check accepts are the ones the instructions read."""
+    from mcstudio.controller.mc.fb.base import STRUCT_MEMBERS
+    from mcstudio.controller.mc.fb.homing_fb import HOMING_REF_MEMBERS
+    from mcstudio.project.models import AxisParameters
+
+    assert {m[0] for m in HOMING_REF_MEMBERS} == STRUCT_MEMBERS["_sHOMING_REF"]
+    assert set(AxisParameters.model_fields) == STRUCT_MEMBERS["_sAXIS_PARAM"]

@@ -58,7 +58,9 @@ class Axis(AxisPlanning):
         self.error_code = 0  # MFaultLvl.Code (0 = no minor fault)
         self.observations: dict[int, bool] = {}  # active observation codes (Obsr)
         self.reset_generation = 0  # increments each time the axis error is reset (releases FB Error outputs)
-        self._homed = False
+        # Absolute encoder: home is defined when EtherCAT process data communication becomes established (CPU
+        # ≥ 1.10, omron-axis-instructions.md line 100). The emulated network is established from cycle 0.
+        self._homed = self.config.drive.EncoderType == "absolute" and not self.virtual
         self.in_pos_waiting = False
         self.homing: Any = None  # the running Homing sequence (mc/homing.py)
         self.latch_owner: dict[int, Any] = {}  # LatchID → instruction using the drive latch
@@ -302,7 +304,7 @@ class Axis(AxisPlanning):
     # ------------------------------------------------------------------ starting instructions
     def check_start(self, kind: str = "move") -> tuple[str, int]:
         """Acceptance in the current state (A-3.4/A-3.8, `acceptance.py`): ("ok"|"abort"|"error", code)."""
-        if self.encoder and kind not in ("admin", "latch"):
+        if self.encoder and kind not in ("admin", "latch", "set_position"):  # A-3.7
             return "error", E.E_AXIS_TYPE
         v = verdict(kind, self.state)
         if v == "ok" or v == "abort":
@@ -350,6 +352,8 @@ class Axis(AxisPlanning):
             JobKind.RESET_FE: S.Stopping,
             JobKind.HOMING: S.Homing,
         }.get(job.kind)
+        if job.kind == JobKind.RESET_FE and self.state == S.Standstill:
+            state = None  # MC_ResetFollowingError on a standing axis keeps Standstill (A-3.4: B → B; C/D/E → G)
         if state is not None:
             self._set_state(state)
         self.m.schedule(self)

@@ -127,7 +127,7 @@ class MotionModule:
         self.acc_warn = np.zeros(n)
         self.dec_warn = np.zeros(n)
         self.max_dec = np.zeros(n)
-        self.homed = np.zeros(n, dtype=bool)
+        self.homed = np.array([a.homed for a in self.axes], dtype=bool)
         self.fe_check = np.ones(n, dtype=bool)  # FALSE during the push phase of homing
         self.limit_check = np.ones(n, dtype=bool)  # FALSE while homing handles the limit inputs itself
         for a in self.axes:

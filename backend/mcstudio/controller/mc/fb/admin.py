@@ -198,6 +198,9 @@ class MC_SetOverride(_EnableFB):
         if axis is None:
             self.fail(E.E_ILLEGAL_AXIS, None)
             return
+        if axis.encoder:
+            self.fail(E.E_AXIS_TYPE, axis)  # MC_SetOverride on an encoder axis → H
+            return
         i = self.inp
         for name, code in (("AccFactor", 0x5470), ("JerkFactor", 0x546F)):
             if not 0.0 <= i[name] <= 500.0:
@@ -368,8 +371,8 @@ class MC_ChangeAxisUse(ExecuteFB):
             return
         if use == 1 and axis.used:
             if axis.state not in (AxisState.Disabled, AxisState.Standstill):
-                self.fail(0x5702, axis, fault_axis=False)
-                self.mc.log_error(0x5702, axis=axis, source=self.label)
+                # 5702 is an axis minor fault: the axis goes to ErrorStop (A-3.4 row MC_ChangeAxisUse, C–H → H)
+                self.fail(0x5702, axis)
                 return
             axis.used = False
             axis.homed = False  # switching to unused makes home undefined

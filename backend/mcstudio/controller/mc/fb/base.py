@@ -39,6 +39,14 @@ INT_RANGES = {
 
 
 STRUCT_TYPES = ("_sHOMING_REF", "_sAXIS_PARAM", "_sTRIGGER_REF")
+# member names of the structures (a misspelt member is a 422 naming it, not silently the default value)
+STRUCT_MEMBERS: dict[str, frozenset[str]] = {
+    "_sHOMING_REF": frozenset(("HomingMode", "HomeInput", "StartDir", "HomeDir", "PosiLmtMode", "NegaLmtMode", "Vel",
+                               "ApproachVel", "Acc", "Dec", "Jerk", "Mask", "Offset", "PushTime", "Compensation",
+                               "CompensationVel")),
+    "_sTRIGGER_REF": frozenset(("Mode", "LatchID", "InputDrive")),
+    "_sAXIS_PARAM": frozenset(("UnitConversion", "Operation", "OtherOperation", "Limit", "PosCount", "Homing")),
+}
 
 
 class FBInputError(ValueError):
@@ -120,6 +128,10 @@ class Var:
             # a structure variable: a JSON object; members are checked by the instruction (manual ErrorIDs)
             if not isinstance(value, dict):
                 raise FBInputError(self.name, f"expected a {t} structure (JSON object), got {value!r}")
+            unknown = sorted(set(value) - STRUCT_MEMBERS[t])
+            if unknown:
+                raise FBInputError(self.name, f"{t} has no member {unknown[0]!r} (members: "
+                                              f"{', '.join(sorted(STRUCT_MEMBERS[t]))})")
             for k, v in value.items():
                 if isinstance(v, float) and not math.isfinite(v):
                     raise FBInputError(self.name, f"member {k} must be a finite number")

@@ -261,7 +261,8 @@ class _MotionFB(ExecuteFB):
         if verdict == "abort":
             self._finish("CommandAborted")
             return
-        code = self._check(axis) or code  # D2: input errors before state errors
+        if code != E.E_AXIS_TYPE:  # an encoder axis is refused before anything else
+            code = self._check(axis) or code  # D2: input errors before state errors
         if code:
             self.fail(code, axis)
             return
