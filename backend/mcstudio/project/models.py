@@ -175,9 +175,13 @@ class ServoDriveSettings(_Strict):
     count settings) and where the drive's inputs come from. Not readable or writable by MC_Read/WriteAxisParameter."""
 
     EncoderType: Literal["incremental", "absolute"] = Field(
-        "incremental", description="Incremental: home undefined at power-on; absolute: home defined at servo ON"
+        "incremental", description="Incremental: home undefined at power-on; absolute: home defined as soon as "
+        "EtherCAT process data communication is established (and again at servo ON if it was undefined)"
     )
-    AbsoluteEncoderHomeOffset: float = Field(0.0, description="Absolute encoder home offset [unit]")
+    AbsoluteEncoderHomeOffset: float = Field(
+        0.0, description="Absolute encoder home offset [unit]: position = encoder position + this offset when an "
+        "absolute-encoder axis becomes home-defined"
+    )
 
 
 class SensorSettings(_Strict):

@@ -1677,14 +1677,14 @@ export interface components {
         ServoDriveSettings: {
             /**
              * Encodertype
-             * @description Incremental: home undefined at power-on; absolute: home defined at servo ON
+             * @description Incremental: home undefined at power-on; absolute: home defined as soon as EtherCAT process data communication is established (and again at servo ON if it was undefined)
              * @default incremental
              * @enum {string}
              */
             EncoderType: "incremental" | "absolute";
             /**
              * Absoluteencoderhomeoffset
-             * @description Absolute encoder home offset [unit]
+             * @description Absolute encoder home offset [unit]: position = encoder position + this offset when an absolute-encoder axis becomes home-defined
              * @default 0
              */
             AbsoluteEncoderHomeOffset: number;

@@ -255,3 +255,24 @@ def test_free_run_stop_needs_a_new_power_edge(c: Controller) -> None:
     c.step(1)
     pw.Enable = True
     step_until(c, pw, "Status", limit=20)
+
+
+def test_absolute_encoder_home_offset() -> None:
+    """An absolute-encoder axis is home-defined from the start with [Absolute encoder home offset] applied
+    (omron-axis-instructions.md line 100, CPU ≥ 1.10); after MC_SetPosition (home undefined) the next servo ON
+    defines home again with the offset (MC_Power rules)."""
+    p = axis_project(encoder="absolute")
+    p.axes[0].drive.AbsoluteEncoderHomeOffset = 12.5
+    c = Controller(p)
+    c.step(2)
+    ax = c.mc.axes[0]
+    assert ax.homed and c.mc.act_pos[0] == pytest.approx(12.5) and c.mc.cmd_pos[0] == pytest.approx(12.5)
+    pw = power_on(c)
+    sp = c.fb("MC_SetPosition", Axis="MC_Axis000", Execute=True, Position=100.0)
+    step_until(c, sp, "Done")
+    assert not ax.homed and c.mc.act_pos[0] == pytest.approx(100.0)
+    c.set_inputs(pw.id, {"Enable": False})
+    c.step(10)
+    c.set_inputs(pw.id, {"Enable": True})
+    step_until(c, pw, "Status")
+    assert ax.homed and c.mc.act_pos[0] == pytest.approx(12.5)

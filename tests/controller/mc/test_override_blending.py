@@ -168,7 +168,7 @@ def test_acc_dec_over_error_stop_on_blending_is_5445() -> None:
 
 def test_acc_dec_over_on_aborting_multi_execution() -> None:
     """A new target too close to stop with the instruction's deceleration: 5444 with error stop, rapid
-    deceleration onto the target otherwise (decision D2x, _eMC_ACCDECOVER)."""
+    deceleration onto the target otherwise (decision D8, _eMC_ACCDECOVER)."""
     c = Controller(axis_project(Operation={"AccDecOver": "_mcAccDecOverErrorStop"}))
     power_on(c)
     c.fb("MC_MoveVelocity", Axis="MC_Axis000", Execute=True, Velocity=200.0, Acceleration=10000.0)

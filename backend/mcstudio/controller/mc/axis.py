@@ -272,7 +272,11 @@ class Axis(AxisPlanning):
     def on_servo_changed(self, on: bool) -> None:
         """Inputs stage: the drive reports a change of *Operation enabled*."""
         if on and self.config.drive.EncoderType == "absolute" and not self.homed:
-            self.homed = True  # absolute encoder: home defined when the axis becomes ready (MC_Power rules)
+            # absolute encoder: home defined when the axis becomes ready, with the [Absolute encoder home offset]
+            # applied (MC_Power rules; omron-axis-instructions.md line 100)
+            offset = self.config.drive.AbsoluteEncoderHomeOffset
+            self.m.shift_coordinates(self.i, offset - float(self.m.pos_offset[self.i]))
+            self.homed = True
         if self.state == S.ErrorStop:
             return  # ErrorStop dominates; MC_Reset decides the next state
         if on:

@@ -83,7 +83,10 @@ class MotionModule:
         self.rotary = np.array([a.rotary for a in self.axes], dtype=bool)
         self.mod_min = np.array([a.mod_min for a in self.axes], dtype=float)
         self.mod_len = np.array([a.mod_max - a.mod_min if a.rotary else 0.0 for a in self.axes], dtype=float)
-        self.pos_offset = np.zeros(n)  # command units: position = pulses / ppu + offset
+        # command units: position = pulses / ppu + offset. Absolute encoders start home-defined with
+        # [Absolute encoder home offset] applied (omron-axis-instructions.md line 100).
+        self.pos_offset = np.array([a.config.drive.AbsoluteEncoderHomeOffset if a.homed else 0.0 for a in self.axes],
+                                   dtype=float)
         self.cmd_pos = np.zeros(n)  # continuous (unwrapped) command position
         self.prof_vel = np.zeros(n)  # analytic profile velocity/acceleration: the state a re-plan starts from
         self.prof_acc = np.zeros(n)
