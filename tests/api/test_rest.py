@@ -315,6 +315,31 @@ def test_snapshot_and_websocket(client: TestClient) -> None:
         assert set(msg["controller"]) >= {"mode", "cycle", "time_s", "rtf"}
 
 
+def test_websocket_pushes_the_events_of_a_new_controller(client: TestClient) -> None:
+    """After a reset the new controller's event numbers start again; the stream must not filter them out by the
+    old numbers, and the status says the controller was replaced (epoch)."""
+    e0 = client.get(f"{API}/controller").json()["epoch"]
+    with client.websocket_connect(f"{API}/ws") as ws:
+        ws.send_json({"type": "subscribe", "rate_hz": 60, "axes": [], "fbs": [], "events": True})
+        while ws.receive_json()["type"] != "subscribed":
+            pass
+        for _ in range(5):  # raise the old controller's event numbers
+            post(client, "/fb", {"type": "MC_MoveAbsolute", "inputs": {"Axis": "MC_Axis000", "Execute": True,
+                                                                        "Velocity": 0}}, 201)
+            client.post(f"{API}/controller/step", json={"cycles": 1})
+        assert post(client, "/controller/reset", {})["epoch"] == e0 + 1
+        client.post(f"{API}/controller/step", json={"cycles": 2})
+        seen: list[str] = []
+        while True:
+            msg = ws.receive_json()
+            if msg["type"] != "snapshot" or msg["controller"]["epoch"] != e0 + 1:
+                continue
+            seen += [e["message"] for e in msg["events"]]
+            if any("loaded" in m for m in seen) or msg["controller"]["cycle"] >= 2:
+                break
+        assert any("loaded" in m for m in seen), seen
+
+
 def test_websocket_disconnect_drops_leased_enables(client: TestClient, studio: Any) -> None:
     """A browser that disappears stops its jog at once: leases it renewed drop their Enable inputs."""
     power_on(client)

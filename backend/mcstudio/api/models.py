@@ -29,6 +29,8 @@ class ControllerStatus(_Model):
     overruns: int = Field(description="Realtime mode: periods whose computation finished after their deadline")
     project: str
     project_dirty: bool = Field(False, description="The project in the controller differs from the saved file")
+    epoch: int = Field(0, description="Increments each time the controller is replaced (configuration applied, "
+                       "project opened, reset): cycle, instance ids and event numbers restart")
 
 
 class ModeIn(_Model):

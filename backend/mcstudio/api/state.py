@@ -63,6 +63,7 @@ class Studio:
             overruns=st.overruns,
             project=snap.project,
             project_dirty=self.dirty,
+            epoch=self.runner.epoch,
         )
 
     @property
@@ -90,6 +91,8 @@ class Studio:
                 "cmd_jerk": float(mc["cmd_jerk"][i]),
                 "act_pos": float(mc["act_pos"][i]),
                 "act_vel": float(mc["act_vel"][i]),
+                "cmd_trq": float(mc["cmd_trq"][i]),
+                "act_trq": float(mc["act_trq"][i]),
                 "drv": drv_status(int(mc["drv"][i])),
             }
             out.append((axis.name, axis_variables(axis, mc["discrete"][i], row)))

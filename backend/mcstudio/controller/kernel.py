@@ -23,6 +23,7 @@ from typing import Any
 
 from ..drives.cia402 import SensorLayout
 from ..fieldbus.network import Network
+from ..plant.ideal import Mechanics
 from ..project.models import AxisConfig, Project
 from .events import EventLog
 from .mc.enums import _eMC_AXIS_TYPE
@@ -51,6 +52,20 @@ def sensor_layout(axes: list[AxisConfig]) -> SensorLayout:
         layout.z_offset[k] = float(s.ZPhaseOffset)
         layout.z_period[k] = float(a.parameters.UnitConversion.CmdPlsCountPerMotorRotation)
     return layout
+
+
+def mechanics(axes: list[AxisConfig]) -> Mechanics:
+    """The mechanism behind each slave's drive from the axes' servo-drive settings (torque control)."""
+    mech = Mechanics(len(axes))
+    for k, a in enumerate(axes):
+        d = a.drive
+        mech.pulses_per_rev[k] = float(a.parameters.UnitConversion.CmdPlsCountPerMotorRotation)
+        mech.rated_torque[k] = d.RatedTorque
+        mech.inertia[k] = d.Inertia
+        mech.viscous[k] = d.ViscousFriction
+        mech.load[k] = d.LoadTorque
+        mech.cst[k] = d.CyclicTorqueMode
+    return mech
 
 
 class KernelError(Exception):
@@ -113,7 +128,7 @@ class Controller:
         ]
         real.sort(key=lambda a: a.node_address or 0)
         self.network = Network([a.node_address for a in real], [f"Node{a.node_address} ({a.name})" for a in real],  # type: ignore[misc]
-                               sensors=sensor_layout(real), period_s=self.period_s)
+                               sensors=sensor_layout(real), period_s=self.period_s, mechanics=mechanics(real))
         self.mc = MotionModule(project, period_s=self.period_s, events=self.events, network=self.network)
         self.cycle = 0
         self.program: dict[int, ProgramEntry] = {}

@@ -55,6 +55,7 @@ class Runner:
         self._stop = False
         self._thread: threading.Thread | None = None
         self.overruns = 0
+        self.epoch = 0  # increments each time the controller is replaced
         self.rtf = 0.0
         self._rt_anchor: tuple[float, int] | None = None
         self._rtf_mark: tuple[float, float] = (time.perf_counter(), controller.time_s)
@@ -120,6 +121,7 @@ class Runner:
     def replace_controller(self, controller: Controller) -> None:
         def apply(_: Controller) -> None:
             self._controller = controller
+            self.epoch += 1
             self._rt_anchor = None
             self.overruns = 0
             self._rtf_mark = (time.perf_counter(), controller.time_s)

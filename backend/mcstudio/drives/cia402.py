@@ -4,8 +4,12 @@ Each drive sees only its RxPDO entries (controlword 6040h, modes of operation 60
 answers through its TxPDO entries (statusword 6041h, modes display 6061h, position actual 6064h …), as a real drive
 does. The state machine follows CiA402 (codesys-lc1200.md §B): states, controlword commands and statusword patterns.
 
-This first version implements the cyclic synchronous position mode (8) with the mechanism behind it in `plant/`;
-the EtherCAT issue adds CSV/CST/homing, touch probe, limits and faults.
+Modes of operation: cyclic synchronous position (8) and cyclic synchronous torque (10, where the drive supports
+it), with the mechanism behind the drive in `plant/`. A new mode of operation (6060h) takes effect with the frame
+that carries it and is reported in 6061h at once; a mode the drive does not support is ignored (the drive keeps its
+mode, as a drive that rejects the request). Statusword bit 11 (internal limit active) is set while the drive limits
+its torque (60E0h/60E1h) or, in CST, the velocity (607Fh). CSV, drive faults and the limits in CSP come with the
+EtherCAT issue.
 """
 
 from __future__ import annotations
@@ -172,8 +176,8 @@ def _z_edge(p0: float, p1: float, offset: float, period: float) -> float | None:
 
 
 class Cia402Drives:
-    """N CiA402 servo drives in cyclic synchronous position mode, one row per drive, with the sensors wired to them
-    (limit switches, home proximity, external latch inputs, encoder Z phase) and the touch-probe function."""
+    """N CiA402 servo drives in cyclic synchronous position or torque mode, one row per drive, with the sensors wired
+    to them (limit switches, home proximity, external latch inputs, encoder Z phase) and the touch-probe function."""
 
     def __init__(self, n: int, sensors: SensorLayout | None = None) -> None:
         self.n = n
@@ -187,6 +191,8 @@ class Cia402Drives:
         self.state = np.full(n, PDS.SwitchOnDisabled, dtype=np.int8)
         self.main_power = np.ones(n, dtype=bool)
         self.mode_display = np.full(n, MODE_CSP, dtype=np.int8)
+        self.cst_supported = np.ones(n, dtype=bool)  # CST in the supported drive modes (6502h bit 9)
+        self.internal_limit = np.zeros(n, dtype=bool)  # statusword bit 11, set by the mechanism's torque control
         self.position = np.zeros(n, dtype=np.int64)  # motor position in encoder pulses (64-bit internally)
         self._prev_cw = np.zeros(n, dtype=np.uint16)
 
@@ -203,7 +209,10 @@ class Cia402Drives:
         if fault_reset.any():
             nxt[fault_reset & (self.state == _FAULT)] = _SOD
         self.state[:] = nxt
-        self.mode_display[:] = np.where(mode_of_operation != 0, mode_of_operation, self.mode_display)
+        change = mode_of_operation != self.mode_display
+        if change.any():
+            ok = change & ((mode_of_operation == MODE_CSP) | ((mode_of_operation == MODE_CST) & self.cst_supported))
+            self.mode_display[ok] = mode_of_operation[ok]
 
     def sense(self, previous: np.ndarray, probe_function: np.ndarray) -> None:
         """Inputs after the mechanism moved from `previous` to `position`: 60FDh bits and touch-probe latches."""
@@ -253,7 +262,10 @@ class Cia402Drives:
 
     def statusword(self) -> np.ndarray:
         # bit 4 "voltage enabled": the main circuit (DC link) is powered — Omron's DrvStatus.MainPower; bit 9 remote
-        return _SW[self.state] | (self.main_power.astype(np.uint16) << 4) | np.uint16(0x0200)
+        sw = _SW[self.state] | (self.main_power.astype(np.uint16) << 4) | np.uint16(0x0200)
+        if self.internal_limit.any():
+            sw |= self.internal_limit.astype(np.uint16) << 11
+        return sw
 
     @property
     def operation_enabled(self) -> np.ndarray:

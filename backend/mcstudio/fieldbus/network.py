@@ -15,8 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..drives.cia402 import Cia402Drives, SensorLayout
-from ..plant.ideal import IdealPlant, wrap32
+from ..drives.cia402 import MODE_CST, Cia402Drives, SensorLayout
+from ..plant.ideal import IdealPlant, Mechanics, wrap32
 
 # RxPDO 1600h (master → drive) and TxPDO 1A00h (drive → master) of the generic CiA402 servo drive: the objects of
 # Omron's default assignment (omron-mc-basics.md §2.11) plus 606Ch velocity actual value.
@@ -43,6 +43,7 @@ TX_ENTRIES: tuple[tuple[str, int, str], ...] = (
     ("touch_probe_pos2", 0x60BC, "<i4"),
     ("digital_inputs", 0x60FD, "<u4"),
 )
+MAPPED_OBJECTS = frozenset(index for _, index, _ in (*RX_ENTRIES, *TX_ENTRIES))
 RX_DTYPE = np.dtype([(n, t) for n, _, t in RX_ENTRIES])
 TX_DTYPE = np.dtype([(n, t) for n, _, t in TX_ENTRIES])
 
@@ -59,7 +60,7 @@ class Network:
     """Master plus N CiA402 servo slaves. Row i of `rx`/`tx` is the process image of slave i."""
 
     def __init__(self, node_addresses: list[int], names: list[str], sensors: SensorLayout | None = None,
-                 period_s: float = 0.001) -> None:
+                 period_s: float = 0.001, mechanics: Mechanics | None = None) -> None:
         n = len(node_addresses)
         self.period_s = period_s
         self.slaves = [
@@ -69,7 +70,8 @@ class Network:
         self.rx = np.zeros(n, dtype=RX_DTYPE)  # written by the MC layer (outputs stage)
         self.tx = np.zeros(n, dtype=TX_DTYPE)  # read by the MC layer (inputs stage)
         self.drives = Cia402Drives(n, sensors)
-        self.plant = IdealPlant(n)
+        self.plant = IdealPlant(n, mechanics, period_s)
+        self.drives.cst_supported[:] = self.plant.mech.cst
         self._latch_inputs()
 
     def exchange(self) -> None:
@@ -77,7 +79,21 @@ class Network:
         d = self.drives
         d.step(rx["controlword"], rx["modes_of_operation"])
         previous = d.position.copy()
-        self.plant.advance(d.position, rx["target_position"], d.operation_enabled)
+        enabled = d.operation_enabled
+        cst = enabled & (d.mode_display == MODE_CST)
+        if cst.any():
+            # cyclic synchronous torque: 6071h target torque within 60E0h/60E1h and the 607Fh velocity limit
+            idx = np.flatnonzero(cst)
+            self.plant.advance(d.position, rx["target_position"], enabled, cst)
+            self.plant.advance_torque(idx, d.position, rx["target_torque"][idx].astype(float),
+                                      rx["positive_torque_limit"][idx].astype(float),
+                                      -rx["negative_torque_limit"][idx].astype(float),
+                                      rx["max_profile_velocity"][idx].astype(float))
+            d.internal_limit[:] = self.plant.limited
+        else:
+            self.plant.advance(d.position, rx["target_position"], enabled)
+            if d.internal_limit.any():
+                d.internal_limit[:] = False
         d.sense(previous, rx["touch_probe_function"])
         self.velocity = (d.position - previous) / self.period_s
         self._latch_inputs()
@@ -90,11 +106,15 @@ class Network:
         tx["velocity_actual"] = np.clip(np.rint(getattr(self, "velocity", 0.0)), -(2**31), 2**31 - 1).astype(np.int32)
         tx["modes_display"] = d.mode_display
         tx["error_code"] = 0
-        tx["torque_actual"] = 0
+        tx["torque_actual"] = np.clip(np.rint(self.plant.torque), -32768, 32767).astype(np.int16)
         tx["touch_probe_status"] = d.probe_status
         tx["touch_probe_pos1"] = wrap32(d.probe_pos1)
         tx["touch_probe_pos2"] = wrap32(d.probe_pos2)
         tx["digital_inputs"] = d.digital_inputs
+
+    def mapped_objects(self, slave: int) -> frozenset[int]:
+        """Object indices in the PDO mapping of a slave (instructions needing others give 3461 at start)."""
+        return MAPPED_OBJECTS
 
     def image_bytes(self, slave: int) -> tuple[bytes, bytes]:
         """The RxPDO and TxPDO bytes of one slave as they travel on the wire."""

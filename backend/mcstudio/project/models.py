@@ -27,6 +27,7 @@ from ..controller.mc.enums import (
     _eMC_SWLMT_MODE,
     _eMC_UNITS,
 )
+from ..plant.ideal import DEFAULT_INERTIA, DEFAULT_LOAD_TORQUE, DEFAULT_RATED_TORQUE, DEFAULT_VISCOUS_FRICTION
 from .enumtypes import ManualEnum
 
 SCHEMA_VERSION = 1
@@ -172,7 +173,8 @@ class AxisParameters(_Strict):
 
 class ServoDriveSettings(_Strict):
     """Sysmac Studio's axis settings outside `_sAXIS_PARAM` that the instructions need: the encoder type (position
-    count settings) and where the drive's inputs come from. Not readable or writable by MC_Read/WriteAxisParameter."""
+    count settings), and the servo drive with the mechanism behind it (rated torque, inertia, friction and load,
+    supported modes). Not readable or writable by MC_Read/WriteAxisParameter."""
 
     EncoderType: Literal["incremental", "absolute"] = Field(
         "incremental", description="Incremental: home undefined at power-on; absolute: home defined as soon as "
@@ -181,6 +183,29 @@ class ServoDriveSettings(_Strict):
     AbsoluteEncoderHomeOffset: float = Field(
         0.0, description="Absolute encoder home offset [unit]: position = encoder position + this offset when an "
         "absolute-encoder axis becomes home-defined"
+    )
+    # The mechanism behind the drive in cyclic synchronous torque mode (MC_TorqueControl):
+    # J·dω/dt = T − ViscousFriction·ω − LoadTorque at the motor shaft (architecture.md "Mechanism").
+    RatedTorque: float = Field(
+        DEFAULT_RATED_TORQUE, gt=0, le=100000.0,
+        description="Motor rated torque [N·m] = 100 % of the torque objects (6071h, 6077h, 60E0h/60E1h, Cmd/Act.Trq)"
+    )
+    Inertia: float = Field(
+        DEFAULT_INERTIA, gt=0, le=10000.0,
+        description="Total moment of inertia at the motor shaft (rotor + load) [kg·m²]"
+    )
+    ViscousFriction: float = Field(
+        DEFAULT_VISCOUS_FRICTION, ge=0, le=10000.0,
+        description="Viscous friction coefficient at the motor shaft [N·m/(rad/s)]"
+    )
+    LoadTorque: float = Field(
+        DEFAULT_LOAD_TORQUE, ge=-100000.0, le=100000.0,
+        description="Constant external load torque at the motor shaft [N·m] (e.g. gravity); a positive value acts "
+        "in the negative direction"
+    )
+    CyclicTorqueMode: bool = Field(
+        True, description="The drive supports cyclic synchronous torque mode (CST); without it a change to CST is "
+        "ignored by the drive and MC_TorqueControl ends with 7439 after 1 s"
     )
 
 

@@ -711,6 +711,12 @@ export interface components {
              * @default false
              */
             project_dirty: boolean;
+            /**
+             * Epoch
+             * @description Increments each time the controller is replaced (configuration applied, project opened, reset): cycle, instance ids and event numbers restart
+             * @default 0
+             */
+            epoch: number;
         };
         /** ErrorInfo */
         ErrorInfo: {
@@ -1672,7 +1678,8 @@ export interface components {
         /**
          * ServoDriveSettings
          * @description Sysmac Studio's axis settings outside `_sAXIS_PARAM` that the instructions need: the encoder type (position
-         *     count settings) and where the drive's inputs come from. Not readable or writable by MC_Read/WriteAxisParameter.
+         *     count settings), and the servo drive with the mechanism behind it (rated torque, inertia, friction and load,
+         *     supported modes). Not readable or writable by MC_Read/WriteAxisParameter.
          */
         ServoDriveSettings: {
             /**
@@ -1688,6 +1695,36 @@ export interface components {
              * @default 0
              */
             AbsoluteEncoderHomeOffset: number;
+            /**
+             * Ratedtorque
+             * @description Motor rated torque [N·m] = 100 % of the torque objects (6071h, 6077h, 60E0h/60E1h, Cmd/Act.Trq)
+             * @default 1.27
+             */
+            RatedTorque: number;
+            /**
+             * Inertia
+             * @description Total moment of inertia at the motor shaft (rotor + load) [kg·m²]
+             * @default 0.00027
+             */
+            Inertia: number;
+            /**
+             * Viscousfriction
+             * @description Viscous friction coefficient at the motor shaft [N·m/(rad/s)]
+             * @default 0.0001
+             */
+            ViscousFriction: number;
+            /**
+             * Loadtorque
+             * @description Constant external load torque at the motor shaft [N·m] (e.g. gravity); a positive value acts in the negative direction
+             * @default 0
+             */
+            LoadTorque: number;
+            /**
+             * Cyclictorquemode
+             * @description The drive supports cyclic synchronous torque mode (CST); without it a change to CST is ignored by the drive and MC_TorqueControl ends with 7439 after 1 s
+             * @default true
+             */
+            CyclicTorqueMode: boolean;
         };
         /** StepIn */
         StepIn: {
@@ -1731,6 +1768,12 @@ export interface components {
              * @default false
              */
             project_dirty: boolean;
+            /**
+             * Epoch
+             * @description Increments each time the controller is replaced (configuration applied, project opened, reset): cycle, instance ids and event numbers restart
+             * @default 0
+             */
+            epoch: number;
             /**
              * Stepped
              * @description Cycles actually run

@@ -19,6 +19,7 @@ import { AxesTable } from "./axes/AxesTable";
 import { AxisSettings } from "./settings/AxisSettings";
 import { AxisTestRun } from "./testrun/AxisTestRun";
 import { VizView } from "./viz/VizView";
+import { OfflineBanner } from "./OfflineBanner";
 
 function CloseTab({ label, testId, onClose }: { label: string; testId: string; onClose: () => void }) {
   return (
@@ -112,6 +113,7 @@ export function Workspace() {
 
   return (
     <Box style={{ flex: 1, minHeight: 0, display: "flex", flexDirection: "column", background: "white" }}>
+      <OfflineBanner />
       <Tabs
         value={active}
         onChange={(v) => v && activateTab(v)}

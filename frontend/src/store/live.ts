@@ -132,8 +132,8 @@ function wsUrl(): string {
 function applySnapshot(snap: WsSnapshot): void {
   const prev = liveStore.get();
   const pc = prev.controller;
-  const replaced =
-    pc !== null && (snap.controller.cycle < pc.cycle || snap.controller.project !== pc.project);
+  // The server's epoch increments whenever the controller is replaced (reset, configuration applied, project opened).
+  const replaced = pc !== null && snap.controller.epoch !== pc.epoch;
   if (replaced) history.clear();
   recordHistory(snap);
   const axes: Record<string, AxisVariables> = {};

@@ -199,7 +199,7 @@ def test_aborting_multi_execution_reverses_with_deceleration_stop(ctrl: Controll
 
 def test_buffered_starts_when_previous_is_done(ctrl: Controller) -> None:
     """BufferMode _mcBuffered: the second instruction waits (Busy, not Active) and starts when the first is Done
-    (Active one period later, as for a direct start);
+    (its Active rises in the period the first one's Done does, as in PLCopen's buffered chart; decision D1);
     a third buffered one exceeds the buffer (5443, one buffered instruction per axis, A-3.1)."""
     power_on(ctrl)
     a = ctrl.fb("MC_MoveAbsolute", Axis="MC_Axis000", Execute=True, Position=10.0, Velocity=50.0,
@@ -209,10 +209,11 @@ def test_buffered_starts_when_previous_is_done(ctrl: Controller) -> None:
                 Acceleration=500.0, Deceleration=500.0, BufferMode="_mcBuffered")
     ctrl.step(2)
     assert b.Busy and not b.Active and a.Active
-    step_until(ctrl, a, "Done")  # A completes; B takes over and moves from the next period …
-    assert not b.Active
-    ctrl.step(1)  # … where it shows Active
+    step_until(ctrl, a, "Done")  # A completes; B shows Active in the same period (D1) …
     assert b.Active and not b.Done
+    held = float(ctrl.mc.cmd_pos[0])
+    ctrl.step(1)  # … and moves from the next period
+    assert ctrl.mc.cmd_pos[0] > held
     step_until(ctrl, b, "Done")
     assert ctrl.mc.act_pos[0] == pytest.approx(20.0, abs=1e-9)
     c1 = ctrl.fb("MC_MoveAbsolute", Axis="MC_Axis000", Execute=True, Position=0.0, Velocity=50.0)

@@ -164,8 +164,9 @@ TABLE: dict[str, dict[str, tuple[str, Any]]] = {
                                "F": ("H", MX), "G": ("G", "ok"), "H": ("H", "abort")},
     **{n: {col: (col, "ok") for col in "ABCDFGH"}
        for n in ("MC_SetOverride", "MC_SetTorqueLimit", "MC_ZoneSwitch", "MC_AxesObserve", "MC_Reset")},
-    "MC_TouchProbe": {**{col: (col, "ok") for col in "ABCDGH"}, "F": ("H", MX)},
-    "MC_AbortTrigger": {**{col: (col, "ok") for col in "ABCDGH"}, "F": ("H", MX)},
+    # F: both latches are in use during homing — 546E Duplicate Latch ID (A-1 #77, decision D22)
+    "MC_TouchProbe": {**{col: (col, "ok") for col in "ABCDGH"}, "F": ("H", 0x546E)},
+    "MC_AbortTrigger": {**{col: (col, "ok") for col in "ABCDGH"}, "F": ("H", 0x546E)},
     "MC_ChangeAxisUse(used→unused)": {"A": ("-", "ok"), "B": ("-", "ok"),
                                       **{col: ("H", 0x5702) for col in "CDFGH"}},
 }

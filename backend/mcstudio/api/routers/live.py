@@ -91,19 +91,22 @@ async def websocket(ws: WebSocket) -> None:
     last_sent = 0.0
     loop = asyncio.get_running_loop()
     since_event = studio.controller.events.last_seq
+    epoch = studio.runner.epoch
     try:
         while not task.done():
             await asyncio.sleep(1.0 / state["sub"].rate_hz)
             sub: WsSubscribe = state["sub"]
             snap = studio.runner.snapshot
             now = loop.time()
+            if studio.runner.epoch != epoch:  # a new controller: its event numbers start again
+                epoch, since_event, last_cycle = studio.runner.epoch, 0, -1
             new_events = studio.controller.events.last_seq != since_event
             if snap.cycle == last_cycle and not new_events and now - last_sent < 1.0:
                 continue
             payload = build_snapshot(studio, snap, sub, since_event)
             if payload["events"]:
                 since_event = payload["events"][-1]["seq"]
-            elif studio.controller.events.last_seq < since_event:  # log cleared or controller replaced
+            elif studio.controller.events.last_seq < since_event:  # log cleared
                 since_event = studio.controller.events.last_seq
             last_cycle, last_sent = snap.cycle, now
             await ws.send_text(json.dumps(payload))

@@ -3,8 +3,8 @@
 Source: `omron-mc-basics.md` §A-3.4 (state after each instruction, seed 000 lines 21576–21675) with the acceptance of
 each cell reconstructed in §A-3.8 — the original encodes it by cell colour, lost in the extraction. Each cell is
 "ok" (accepted), "abort" (CommandAborted, no error) or an ErrorID (the instruction errors and the axis error-stops).
-Codes for refused cells: 5441 on a servo-OFF axis (A-1 #34), 543C "multi-execution disabled" elsewhere (A-1 #29;
-decision D6), 543E on a coordinated axis (A-1 #31).
+Codes for refused cells: 5441 on a servo-OFF axis (A-1 #34), 546E for the latch instructions during homing (A-1 #77),
+543C "multi-execution disabled" elsewhere (A-1 #29; decision D6), 543E on a coordinated axis (A-1 #31).
 """
 
 from __future__ import annotations
@@ -34,8 +34,9 @@ TABLE: dict[str, tuple[Verdict, ...]] = {
     "set_position": (_OK, _OK, _OK, _OK, _MX, _MX, _OK, _OK, _CO),
     # MC_ResetFollowingError: B → B, C/D/E → G, G accepted, F/A errors, H CommandAborted
     "reset_fe": (_SV, _OK, _OK, _OK, _OK, _MX, _OK, _AB, _CO),
-    # MC_TouchProbe, MC_AbortTrigger: not during homing (latches in use), not coordinated
-    "latch": (_OK, _OK, _OK, _OK, _OK, _MX, _OK, _OK, _CO),
+    # MC_TouchProbe, MC_AbortTrigger: not during homing — both latches are in use there, 546E "Duplicate Latch ID"
+    # (A-1 #77, decision D22) — not coordinated
+    "latch": (_OK, _OK, _OK, _OK, _OK, E.E_DUPLICATE_LATCH, _OK, _OK, _CO),
     # MC_SetOverride, MC_SetTorqueLimit, MC_ZoneSwitch, MC_AxesObserve, MC_Reset, MC_Power: every state
     "admin": (_OK, _OK, _OK, _OK, _OK, _OK, _OK, _OK, _OK),
 }

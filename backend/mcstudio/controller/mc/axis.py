@@ -11,6 +11,7 @@ MC_SetPosition and the homing preset move the coordinate system without touching
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING, Any
 
 from . import errors as E
@@ -53,6 +54,8 @@ class Axis(AxisPlanning):
         self.stop_holders: set[int] = set()  # ids of MC_Stop instances whose Execute is still TRUE
         self.power_owner: int | None = None  # MC_Power instance in control (the later instance wins)
         self.override_owner: int | None = None
+        self.torque_limit_owner: int | None = None  # MC_SetTorqueLimit instance in control (the later one wins)
+        self.torque_limits: tuple[bool, float, bool, float] | None = None  # its inputs (direction enables, values)
         self.servo_request = False
         self.forced_off = False
         self.error_code = 0  # MFaultLvl.Code (0 = no minor fault)
@@ -171,6 +174,8 @@ class Axis(AxisPlanning):
         self.m.job_changed(job)
         if job is self.current:
             self.current = None
+            if job.kind == JobKind.TORQUE:
+                self.m.leave_torque(self.i)  # back to position control (CSP) at once (MC_TorqueControl rules)
         if job is self.buffered:
             self.buffered = None
             cur = self.current
@@ -340,8 +345,8 @@ class Axis(AxisPlanning):
         if blending:
             cur.replan = True  # re-plan the running move to reach its target at the transit velocity
             self.m.schedule(self)
-        elif cur.kind in (JobKind.VELOCITY, JobKind.JOG) and cur.in_velocity:
-            self._promote_buffered()
+        elif cur.kind in (JobKind.VELOCITY, JobKind.JOG, JobKind.TORQUE) and cur.in_velocity:
+            self._promote_buffered()  # the running instruction has reached InVelocity / InTorque
         return 0
 
     def _start(self, job: Job) -> None:
@@ -352,6 +357,7 @@ class Axis(AxisPlanning):
             JobKind.POSITION: S.Discrete,
             JobKind.VELOCITY: S.Continuous,
             JobKind.JOG: S.Continuous,
+            JobKind.TORQUE: S.Continuous,
             JobKind.STOP: S.Stopping,
             JobKind.RESET_FE: S.Stopping,
             JobKind.HOMING: S.Homing,
@@ -392,6 +398,10 @@ class Axis(AxisPlanning):
             self._end_job(cur, JobStatus.DONE)
         elif cur is not None and cur.kind == JobKind.RESET_FE:
             job.deceleration = 0.0  # MC_Stop during MC_ResetFollowingError stops immediately (MC_Stop rules)
+        elif cur is not None and cur.kind == JobKind.TORQUE:
+            # MC_Stop during torque control stops immediately: back to CSP with the servo locked at the feedback
+            # position (MC_TorqueControl rules, "axis stop during torque control"; decision D25)
+            job.deceleration = 0.0
         self.abort_all()
         self._start(job)
         return "ok"
@@ -440,6 +450,43 @@ class Axis(AxisPlanning):
             cur.paused = False
             self.m.schedule(self)
 
+    def set_torque_limit(self, fb_id: int, limits: tuple[bool, float, bool, float] | None, changed: bool) -> None:
+        """MC_SetTorqueLimit: `limits` = (PositiveEnable, PositiveValue, NegativeEnable, NegativeValue) while Enable
+        is TRUE, None when Enable went FALSE; the later instance has priority, its Enable FALSE disables the limit."""
+        if changed and limits is not None:
+            self.torque_limit_owner = fb_id
+        if self.torque_limit_owner != fb_id:
+            return
+        if limits is None:
+            self.torque_limit_owner = -1
+        self.torque_limits = limits
+        self.apply_torque_limits()
+
+    def apply_torque_limits(self) -> None:
+        """60E0h/60E1h: the axis parameters [Maximum Positive/Negative Torque Limit], or the MC_SetTorqueLimit
+        values of an enabled direction (clamped to the parameter, 0 or negative acting as 0, 0.1 % resolution) while
+        the servo is ON."""
+        oo = self.params.OtherOperation
+        pos, neg = float(oo.MaxPosiTrqLimit), float(oo.MaxNegaTrqLimit)
+        lim = self.torque_limits
+        if lim is not None and self.servo_on:
+            pe, pv, ne, nv = lim
+            if pe:
+                pos = min(max(round_tenth(pv), 0.0), pos)
+            if ne:
+                neg = min(max(round_tenth(nv), 0.0), neg)
+        m, i = self.m, self.i
+        if m.trq_lim_pos[i] != pos or m.trq_lim_neg[i] != neg:
+            m.trq_lim_pos[i] = pos
+            m.trq_lim_neg[i] = neg
+            m.trq_lim_dirty = True
+
+    def pdo_missing(self, objects: tuple[int, ...]) -> bool:
+        """An object an instruction needs is not in the PDO mapping of the axis's slave (3461). Axes without a
+        slave (virtual servo axes) need none."""
+        mapped = self.m.pdo_objects[self.i]
+        return mapped is not None and not set(objects) <= mapped
+
     def set_position(self, position: float) -> None:
         """MC_SetPosition: the command position becomes `position`, the actual keeps the following error; a running
         MC_MoveAbsolute keeps its absolute target in the new coordinates, relative and velocity motion continue."""
@@ -474,6 +521,11 @@ class Axis(AxisPlanning):
         return (int(self.state), self.error_code, self.obsr_code, self.homed, self.in_pos_waiting, idle)
 
 
+def round_tenth(x: float) -> float:
+    """0.1 % resolution of the torque inputs: the second decimal is rounded half up (manual: 四舍五入)."""
+    return math.floor(x * 10.0 + 0.5) / 10.0
+
+
 def axis_variables(axis: Axis, discrete: tuple[int, int, int, bool, bool, bool], row: dict[str, Any]) -> dict[str, Any]:
     """The axis variable in the `_sAXIS_REF` layout (`omron-mc-basics.md` §2.3), from captured snapshot data."""
     state, error_code, obsr_code, homed, in_pos_waiting, idle = discrete
@@ -495,9 +547,9 @@ def axis_variables(axis: Axis, discrete: tuple[int, int, int, bool, bool, bool],
             "Vel": row["cmd_vel"],
             "AccDec": row["cmd_accdec"],
             "Jerk": row["cmd_jerk"],
-            "Trq": 0.0,
+            "Trq": row.get("cmd_trq", 0.0),
         },
-        "Act": {"Pos": row["act_pos"], "Vel": row["act_vel"], "Trq": 0.0, "TimeStamp": 0},
+        "Act": {"Pos": row["act_pos"], "Vel": row["act_vel"], "Trq": row.get("act_trq", 0.0), "TimeStamp": 0},
         "MFaultLvl": {"Active": error_code != 0, "Code": f"{error_code:04X}"},
         "Obsr": {"Active": obsr_code != 0, "Code": f"{obsr_code:04X}"},
         "Cfg": {

@@ -175,6 +175,7 @@ class AxisPlanning:
             job.info.pop("split_time", None)
             self._end_job(job, JobStatus.DONE)  # type: ignore[attr-defined]
             nxt.status = JobStatus.ACTIVE
+            m.job_changed(nxt)  # Active of the successor shows with the Done of this one
             self.current = nxt
             m.profiles.duration[i] = nxt.info.pop("end_time")
             return True

@@ -29,9 +29,10 @@ class JobKind(enum.IntEnum):
     ERROR_STOP = 4  # ErrorStop deceleration (no owner)
     RESET_FE = 5  # Stopping: MC_ResetFollowingError
     HOMING = 6  # Homing: MC_Home, MC_HomeWithParameter (driven by a Homing sequence)
+    TORQUE = 7  # Continuous: MC_TorqueControl (the drive in CST; torque stage of the MC module, no profile)
 
 
-MOTION_KINDS = (JobKind.POSITION, JobKind.VELOCITY, JobKind.JOG)
+MOTION_KINDS = (JobKind.POSITION, JobKind.VELOCITY, JobKind.JOG, JobKind.TORQUE)
 
 
 @dataclass(eq=False, slots=True)

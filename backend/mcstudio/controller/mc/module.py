@@ -17,6 +17,8 @@ from ...drives.cia402 import (
     DI_HOME_SWITCH,
     DI_NEGATIVE_LIMIT,
     DI_POSITIVE_LIMIT,
+    MODE_CSP,
+    MODE_CST,
     TP1_ENABLE,
     TP1_POS_EDGE,
     TP1_SOURCE_Z,
@@ -133,6 +135,24 @@ class MotionModule:
         self.homed = np.array([a.homed for a in self.axes], dtype=bool)
         self.fe_check = np.ones(n, dtype=bool)  # FALSE during the push phase of homing
         self.limit_check = np.ones(n, dtype=bool)  # FALSE while homing handles the limit inputs itself
+        # torque control (MC_TorqueControl, MC_SetTorqueLimit); torques in % of the rated torque, signed
+        self.trq_active = np.zeros(n, dtype=bool)  # a torque instruction controls the axis: the MC module sends CST
+        self.trq_cmd = np.zeros(n)  # Cmd.Trq: the command torque (outside torque control: Act.Trq)
+        self.act_trq = np.zeros(n)  # Act.Trq: 6077h torque actual value
+        self.trq_target = np.zeros(n)  # target torque (sign = Direction)
+        self.trq_rate = np.zeros(n)  # TorqueRamp [%/s], 0 = step change
+        self.trq_from = np.zeros(n)  # the ramp starts at this torque …
+        self.trq_from_cycle = np.zeros(n, dtype=np.int64)  # … in this period
+        self.trq_vlim = np.zeros(n)  # velocity limit [unit/s] → 607Fh
+        self.trq_reached = np.zeros(n, dtype=bool)  # InTorque reported
+        self.trq_lim_pos = np.zeros(n)  # 60E0h positive torque limit value
+        self.trq_lim_neg = np.zeros(n)  # 60E1h negative torque limit value
+        self.trq_lim_dirty = True  # 60E0h/60E1h to be written in the next outputs stage
+        self._trq_out = False  # the last outputs stage wrote torque-mode objects
+        self._mode_check = False  # watch 6061h against the mode sent (a mode other than CSP was sent recently)
+        self._trq_left = np.full(n, -1, dtype=np.int64)  # period in which torque control last ended
+        self.drv_mode = np.full(n, MODE_CSP, dtype=np.int8)  # 6061h modes of operation display
+        self.prev_act_pos = np.zeros(n)  # Act.Pos of the previous period (Cmd.Pos during torque control)
         for a in self.axes:
             self.refresh_params(a)
         # bus mapping: axes with a slave on the network
@@ -146,6 +166,14 @@ class MotionModule:
         self.bus_rows = np.array(rows, dtype=np.intp)
         self.bus_slaves = np.array(slaves, dtype=np.intp)
         self.virtual_rows = np.array([a.i for a in self.axes if a.i not in set(rows)], dtype=np.intp)
+        self.on_bus = np.zeros(n, dtype=bool)
+        self.on_bus[self.bus_rows] = True
+        # objects in the PDO mapping of each axis's slave (None: no slave — virtual axes)
+        self.pdo_objects: list[frozenset[int] | None] = [None] * n
+        for row, slave in zip(rows, slaves, strict=True):
+            self.pdo_objects[row] = network.mapped_objects(slave)  # type: ignore[union-attr]
+        self._mode_wait = np.zeros(len(rows), dtype=np.int64)  # periods the drive has not taken the mode sent
+        self._mode_limit = max(1, round(1.0 / period_s))  # 7439 after 1 s
         self._prev_pos32 = np.zeros(len(rows), dtype=np.int64)
         if network is not None and len(rows):
             self._prev_pos32[:] = network.tx["position_actual"][self.bus_slaves]
@@ -175,6 +203,7 @@ class MotionModule:
         self.dec_warn[i] = op.MaxDec * op.DecWarningVal / 100.0
         self.max_dec[i] = op.MaxDec
         self.set_input_inversion(axis)
+        axis.apply_torque_limits()
 
     def set_input_inversion(self, axis: Axis) -> None:
         oo = axis.params.OtherOperation
@@ -226,10 +255,96 @@ class MotionModule:
         self.events.add(cycle=self.cycle, time_s=self.cycle * self.period_s, source=axis.name if axis else "MC",
                         code="00000000", level="information", message=message)
 
+    # ------------------------------------------------------------------ torque control
+    def _start_torque(self, i: int, job: Any, start_cycle: int | None) -> None:
+        """A torque job starts or changes (re-execution): the command torque ramps from its current value."""
+        self.profiles.clear(i)
+        self.notify[i] = False
+        self.step_accdec[i] = False
+        self.target_checked[i] = False
+        # from the current command torque: the last command if torque control runs (or ended in this period, e.g.
+        # one MC_TorqueControl aborting another), else the actual torque (Cmd.Trq outside torque control)
+        continuing = self.trq_active[i] or self._trq_left[i] == self.cycle
+        self.trq_cmd[i] = self.trq_from[i] = self.trq_cmd[i] if continuing else self.act_trq[i]
+        self.trq_from_cycle[i] = self.cycle if start_cycle is None else start_cycle
+        if not self.trq_active[i]:
+            # from position control: the command position is held until the drive reports CST
+            self.prof_vel[i] = 0.0
+            self.prof_acc[i] = 0.0
+            self.trq_active[i] = True
+        self.trq_target[i] = job.info["torque"]
+        self.trq_rate[i] = job.info["ramp"]
+        self.trq_vlim[i] = job.velocity
+        self.trq_reached[i] = False
+        job.in_velocity = False
+        job.status = JobStatus.ACTIVE
+        job.replan = False
+        job.cmd_done_cycle = -1
+
+    def leave_torque(self, i: int) -> None:
+        """The torque instruction ended: back to CSP with the command on the feedback position (servo lock), so a
+        following profile starts where the shaft is, at its velocity (MC_TorqueControl rules, decision D25)."""
+        if not self.trq_active[i]:
+            return
+        self.trq_active[i] = False
+        self.trq_reached[i] = False
+        self._trq_left[i] = self.cycle
+        if not self.on_bus[i]:
+            self.act_trq[i] = 0.0  # a virtual servo axis has no torque outside torque control
+        self.cmd_pos[i] = self.act_pos[i]
+        self.prof_vel[i] = self.act_vel[i] if self.on_bus[i] else 0.0
+        self.prof_acc[i] = 0.0
+
+    def _torque_stage(self, cycle: int, T: float) -> None:
+        """Command torque of every axis in torque control (ramp to the target), Cmd.Pos, InTorque."""
+        idx = np.flatnonzero(self.trq_active)
+        tgt = self.trq_target[idx]
+        sent = self.trq_cmd[idx]  # the command the drive received in this period's exchange
+        start = self.trq_from[idx]
+        rate = self.trq_rate[idx]
+        sgn = np.sign(tgt - start)
+        ramp = start + sgn * rate * ((cycle - self.trq_from_cycle[idx] + 1) * T)
+        done = (rate <= 0) | (sgn * (ramp - tgt) >= -1e-9)
+        self.trq_cmd[idx] = np.where(done, tgt, ramp)
+        bus = self.on_bus[idx]
+        in_mode = ~bus | (self.drv_mode[idx] == MODE_CST)  # virtual servo axes: no mode switch
+        cst = bus & in_mode
+        # Cmd.Pos = Act.Pos of one period earlier while the drive is in CST; held (position control) before
+        self.cmd_pos[idx] = np.where(cst, self.prev_act_pos[idx], self.cmd_pos[idx])
+        self.prof_vel[idx] = np.where(cst, self.act_vel[idx], 0.0)
+        self.prof_acc[idx] = 0.0
+        # InTorque: the drive is in CST and has received the target torque (one period after the command reached it,
+        # like the ends of profiles, decision D1)
+        reached = in_mode & (sent == tgt)
+        new = idx[reached & ~self.trq_reached[idx]]
+        self.trq_reached[idx] |= reached
+        for i in new:
+            axis = self.axes[i]
+            job = axis.current
+            if job is None or job.kind != JobKind.TORQUE or job.in_velocity:
+                continue
+            job.in_velocity = True  # InTorque: the target torque is output to the drive in CST
+            self.job_changed(job)
+            if axis.buffered is not None:
+                axis._promote_buffered()  # a buffered instruction takes over at InTorque
+
+    def _mode_switch_failed(self, i: int, reported: int) -> None:
+        """The drive did not take the mode of operation sent within 1 s: 7439, servo OFF (free-run stop)."""
+        axis = self.axes[i]
+        job = axis.current
+        source = None
+        if job is not None and job.kind == JobKind.TORQUE:
+            source = job.owner.label if job.owner is not None else None
+            axis._end_job(job, JobStatus.ERROR, E.E_MODE_SWITCH)
+        axis.raise_error(E.E_MODE_SWITCH, source=source, stop="free",
+                         detail=f"the drive reports mode {reported} 1 s after the request")
+
     # ------------------------------------------------------------------ stage 2: inputs
     def inputs(self) -> None:
         T = self.period_s
         prev_on = self.servo_on.copy()  # (servo changes are rare events handled per axis below)
+        if self.trq_active.any():
+            self.prev_act_pos[:] = self.act_pos  # Cmd.Pos in torque control: Act.Pos of one period earlier
         if self.bus_rows.size:
             tx = self.network.tx  # type: ignore[union-attr]
             rows, sl = self.bus_rows, self.bus_slaves
@@ -245,7 +360,18 @@ class MotionModule:
             self.din[rows] = din
             drv = _DRV_OF_SW[sw]
             oe = (drv & _SERVO_ON_BIT) != 0
-            drv |= _MODE_BITS[tx["modes_display"][sl].view(np.uint8)] * oe
+            mode = tx["modes_display"][sl]
+            drv |= _MODE_BITS[mode.view(np.uint8)] * oe
+            self.drv_mode[rows] = mode
+            self.act_trq[rows] = tx["torque_actual"][sl] / 10.0  # 0.1 % units
+            if self._mode_check:
+                # the drive must report the mode of operation sent within 1 s (7439, MC_TorqueControl rules)
+                pending = (self.network.rx["modes_of_operation"][sl] != mode) & oe  # type: ignore[union-attr]
+                self._mode_wait = np.where(pending, self._mode_wait + 1, 0)
+                self._mode_check = bool(pending.any()) or self._trq_out
+                for k in np.flatnonzero(self._mode_wait >= self._mode_limit):
+                    self._mode_wait[k] = 0
+                    self._mode_switch_failed(int(rows[k]), int(mode[k]))
             drv |= ((din & DI_POSITIVE_LIMIT) != 0) * np.uint32(_B["P_OT"])
             drv |= ((din & DI_NEGATIVE_LIMIT) != 0) * np.uint32(_B["N_OT"])
             drv |= ((din & DI_HOME_SWITCH) != 0) * np.uint32(_B["HomeSw"])
@@ -260,6 +386,8 @@ class MotionModule:
             v = self.virtual_rows
             self.servo_on[v] = self.servo_req[v]
             self.drv[v] = np.where(self.servo_on[v], _VIRTUAL_ON, _VIRTUAL_OFF)
+            if self.trq_active.any():
+                self.act_trq[v] = np.where(self.trq_active[v], self.trq_cmd[v], 0.0)  # no drive: as commanded
         for i in np.flatnonzero(self.servo_on != prev_on):
             self.axes[i].on_servo_changed(bool(self.servo_on[i]))
         # Servo OFF: the command position reads the actual position (manual §2.3, Cmd.Pos).
@@ -326,6 +454,8 @@ class MotionModule:
                     continue
                 # keep reporting while the end is pending (final command in transit, in-position check)
                 self.notify[i] = axis.on_profile_finished(job)
+        if self.trq_active.any():
+            self._torque_stage(cycle, T)
         # derived command values (manual §2.3: differences of command positions / velocities)
         vel = (self.cmd_pos - self.prev_cmd_pos) / T
         accdec = (np.abs(vel) - np.abs(self.cmd_vel)) / T
@@ -345,10 +475,15 @@ class MotionModule:
             scheduled, self._scheduled = self._scheduled, {}
             for i, axis in scheduled.items():
                 self._plan(i, axis, start_cycle=cycle + 1)
+                job = axis.current
+                if job is not None and job.status == JobStatus.ACTIVE and job.owner is not None:
+                    # a buffered instruction took over: its Active shows in the period the previous one is Done
+                    self.changed.append(job)
         self.prev_cmd_pos[:] = self.cmd_pos
         # Push the MC module's status changes to the instances (Done, CommandAborted, InVelocity, Error) so they show
-        # in the period the change happened, independent of program order. Active is read by the instance at its
-        # next call: one period after Busy, as the manual's charts show.
+        # in the period the change happened, independent of program order. Active of an instruction started by its
+        # own call is read at its next call (one period after Busy, as the manual's charts show); Active of a
+        # buffered or blended successor is pushed here, in the period its predecessor reports Done.
         if self.changed:
             changed, self.changed = self.changed, []
             for job in changed:
@@ -363,6 +498,9 @@ class MotionModule:
         if job.status != JobStatus.STARTING and not job.replan and job.kind != JobKind.ERROR_STOP:
             return
         # from the last command value (with start_cycle: the new profile begins after this period's value)
+        if job.kind == JobKind.TORQUE:
+            self._start_torque(i, job, start_cycle)
+            return
         p0, v0, a0 = float(self.cmd_pos[i]), float(self.prof_vel[i]), float(self.prof_acc[i])
         try:
             seg = axis.plan_job(job, p0, v0, a0)
@@ -402,7 +540,21 @@ class MotionModule:
             cw = _CW_FOR_STATE[sw] * self.servo_req[rows]
             cw[cw == 0] = CW_SHUTDOWN
             rx["controlword"][sl] = cw
-            rx["modes_of_operation"][sl] = 8
+            if self.trq_active.any() or self._trq_out:
+                # torque control: CST with the command torque and the velocity limit (6071h, 607Fh)
+                ta = self.trq_active[rows]
+                rx["modes_of_operation"][sl] = np.where(ta, MODE_CST, MODE_CSP)
+                rx["target_torque"][sl] = np.where(ta, np.clip(np.rint(self.trq_cmd[rows] * 10.0), -32768, 32767), 0)
+                vlim = np.clip(np.rint(self.trq_vlim[rows] * self.ppu[rows]), 0, 2**32 - 1)
+                rx["max_profile_velocity"][sl] = np.where(ta, vlim, 0)
+                self._trq_out = bool(ta.any())
+                self._mode_check = True
+            else:
+                rx["modes_of_operation"][sl] = MODE_CSP
+            if self.trq_lim_dirty:
+                self.trq_lim_dirty = False
+                rx["positive_torque_limit"][sl] = np.clip(np.rint(self.trq_lim_pos[rows] * 10.0), 0, 65535)
+                rx["negative_torque_limit"][sl] = np.clip(np.rint(self.trq_lim_neg[rows] * 10.0), 0, 65535)
             rx["touch_probe_function"][sl] = self.tp_func[rows]
         if self.virtual_rows.size:
             v = self.virtual_rows
@@ -419,6 +571,8 @@ class MotionModule:
             "cmd_jerk": self.cmd_jerk.copy(),
             "act_pos": self.wrapped(self.act_pos),
             "act_vel": self.act_vel.copy(),
+            "cmd_trq": np.where(self.trq_active, self.trq_cmd, self.act_trq),  # Cmd.Trq = Act.Trq outside
+            "act_trq": self.act_trq.copy(),
             "drv": self.drv.copy(),
             "discrete": tuple(a.capture() for a in self.axes),
         }

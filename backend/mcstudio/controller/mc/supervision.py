@@ -35,13 +35,14 @@ def supervise(m: MotionModule) -> None:
     T = m.period_s
     homing = m.state == AxisState.Homing
     vel = m.cmd_vel
-    # ---- following error
+    # ---- following error (not in torque control: no position loop, Cmd.Pos is the feedback of one period earlier)
     fe = np.abs(m.cmd_pos - m.act_pos)
-    over = on & m.fe_check & (m.fe_over > 0) & (fe > m.fe_over)
+    pos_loop = on & m.fe_check & ~m.trq_active
+    over = pos_loop & (m.fe_over > 0) & (fe > m.fe_over)
     for i in np.flatnonzero(over):
         m.axes[i].raise_error(E.E_FOLLOWING_ERROR, stop="immediate",
                               detail=f"following error {fe[i]:g} > {m.fe_over[i]:g}")
-    warn = on & (m.fe_warn > 0) & (fe > m.fe_warn)
+    warn = pos_loop & (m.fe_warn > 0) & (fe > m.fe_warn)
     _observe(m, E.O_FOLLOWING_ERROR_WARNING, warn, on)
     # ---- limit inputs during motion (homing handles them itself)
     check = on & m.limit_check & ~homing
@@ -74,8 +75,18 @@ def _observe(m: MotionModule, code: int, active: np.ndarray, scope: np.ndarray) 
 def _software_limits(m: MotionModule, sw: np.ndarray, T: float) -> None:
     mode = m.sw_mode
     v = m.prof_vel
-    cmd_mode = sw & ((mode == 1) | (mode == 2)) & ~m.target_checked
-    act_mode = sw & ((mode == 3) | (mode == 4))
+    trq = sw & m.trq_active
+    cmd_mode = sw & ((mode == 1) | (mode == 2)) & ~m.target_checked & ~trq
+    act_mode = sw & ((mode == 3) | (mode == 4)) & ~trq
+    if trq.any():
+        # torque control: the limits apply whatever the mode selects, on the feedback position, and the axis stops
+        # at once (no deceleration stop in torque control; MC_TorqueControl rules "software limits", D25)
+        pos_hit = trq & (m.act_pos >= m.posi_sw) & (m.act_vel > 0)
+        neg_hit = trq & (m.act_pos <= m.nega_sw) & (m.act_vel < 0)
+        for i in np.flatnonzero(pos_hit | neg_hit):
+            code = E.E_SW_LIMIT_POSI if pos_hit[i] else E.E_SW_LIMIT_NEGA
+            m.axes[i].raise_error(code, stop="immediate",
+                                  detail=f"feedback position {m.act_pos[i]:g} in torque control")
     if cmd_mode.any():
         dec = np.where(m.stop_dec > 0, m.stop_dec, m.max_dec)
         with np.errstate(divide="ignore", invalid="ignore"):

@@ -32,7 +32,11 @@ function AxisRow({ axis }: { axis: AxisSummary }) {
   const servo = v ? v.DrvStatus.ServoOn : axis.servo_on;
   const code = v ? (v.MFaultLvl.Active ? v.MFaultLvl.Code : "0000") : axis.error_code;
   return (
-    <Table.Tr data-testid={`axis-row-${axis.name}`} style={{ cursor: "pointer" }} onDoubleClick={() => openAxisTab(axis.name)}>
+    <Table.Tr
+      data-testid={`axis-row-${axis.name}`}
+      onDoubleClick={() => openAxisTab(axis.name)}
+      title="Double-click to open the test run of this axis"
+    >
       <Table.Td>
         <Text size="xs" fw={600}>
           {axis.name}

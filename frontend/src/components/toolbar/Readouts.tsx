@@ -22,8 +22,9 @@ export function Readouts() {
   const time = useLive((s) => s.controller?.time_s ?? null);
   const rtf = useLive((s) => s.controller?.rtf ?? null);
   const overruns = useLive((s) => s.controller?.overruns ?? null);
+  const live = useLive((s) => s.ws === "live");
   return (
-    <Group gap="md" wrap="nowrap">
+    <Group gap="md" wrap="nowrap" style={{ opacity: live ? 1 : 0.45 }} title={live ? undefined : "Stale: not connected"}>
       <Readout label="Cycle" testId="cycle" w={78}>
         {cycle ?? "—"}
       </Readout>

@@ -129,7 +129,7 @@ class MC_SetPosition(ExecuteFB):
         spec="omron-axis-instructions.md MC_SetPosition (seed 000 line 6146)",
     )
     HAS_ACTIVE = False
-    _BLOCKING = (JobKind.JOG, JobKind.HOMING)
+    _BLOCKING = (JobKind.JOG, JobKind.HOMING, JobKind.TORQUE)  # + MC_TorqueControl: footnote *5
 
     def execute(self, axis: Axis) -> None:
         verdict, code = axis.check_start("set_position")
@@ -366,8 +366,9 @@ class MC_ChangeAxisUse(ExecuteFB):
     def execute(self, axis: Axis) -> None:
         use = self.inp["AxisUse"]
         if use not in (1, 2):
-            self._set_error(0x549E, None)
-            self.mc.log_error(0x549E, axis=None, source=self.label)
+            # source "MC common/Axis" (A-1 #121): an axis error on a used axis, an MC common error on an unused one
+            # (MC_ChangeAxisUse rules, omron-axis-instructions.md line 1858)
+            self.fail(0x549E, axis if axis.used else None)
             return
         if use == 1 and axis.used:
             if axis.state not in (AxisState.Disabled, AxisState.Standstill):

@@ -186,8 +186,9 @@ class MC_HomeWithParameter(MC_Home):
         ref = self.inp.get("HomingParameter")
         params, detail, message = parse_homing_ref(ref or {}, axis)
         if params is None:
+            # an axis minor fault (A-1 #122, source Axis): MFaultLvl, ErrorStop (A-3.2 H), released by MC_Reset
             self._set_error(E.E_HOMING_PARAMETER, axis)
-            axis.m.log_error(E.E_HOMING_PARAMETER, axis=axis, source=self.label,
+            axis.raise_error(E.E_HOMING_PARAMETER, source=self.label,
                              detail=f"attached information {detail}: {message}")
             return None
         return params

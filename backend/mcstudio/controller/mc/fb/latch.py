@@ -200,8 +200,8 @@ class MC_TouchProbe(_Latcher, ExecuteFB):
             code = E.E_STOP_MODE
         if not code and i["ReferenceType"] != 1:
             code = 0x5430
-        if not code and i["StopMode"] == 1 and axis.encoder:
-            code = 0x5492
+        if not code and i["StopMode"] == 1 and (axis.encoder or axis.m.trq_active[axis.i]):
+            code = 0x5492  # the immediate stop needs CSP: not on encoder axes, not in torque control (CST)
         if not code and i["WindowOnly"]:
             code = window_error(axis, i["FirstPosition"], i["LastPosition"])
         if not code:
@@ -214,6 +214,10 @@ class MC_TouchProbe(_Latcher, ExecuteFB):
     def watch(self) -> None:
         axis = self.axis
         if axis is None or not self.out["Busy"] or self.job is not None:
+            return
+        if self.inp["StopMode"] == 1 and axis.m.trq_active[axis.i]:
+            # the axis was switched to torque control (CST) while waiting: CommandAborted (MC_TouchProbe rules)
+            self.abort_latch()
             return
         pos = self._poll()
         if pos is None:
@@ -336,6 +340,9 @@ class MC_MoveFeed(_Latcher, ExecuteFB):
             return 0x548D
         if mode == 0 and not fits_position(i["Position"], axis.ppu):
             return E.E_TARGET_POSITION
+        if mode == 0 and axis.rotary and d != _eMC_DIRECTION._mcNoDirection and \
+                not axis.mod_min <= i["Position"] <= axis.mod_max:
+            return E.E_TARGET_POSITION  # absolute target outside the ring counter, as MC_MoveAbsolute (A-1 #85)
         if mode == 1 and not fits_distance(i["Position"], axis.ppu):
             return E.E_TRAVEL_DISTANCE
         if i["WindowOnly"]:
@@ -375,7 +382,9 @@ class MC_MoveFeed(_Latcher, ExecuteFB):
                 job.target = target
             direction = 1 if target >= cur else -1
         job.info["feed"] = True
-        code = start_limit_error(axis, direction) or self._claim(axis, self._slot)
+        # a positioning target beyond a software limit is refused at start (A-1 #142/#143), as for MC_MoveAbsolute
+        limit_target = None if mode == _eMC_MOVE_MODE._mcVelocity else target
+        code = start_limit_error(axis, direction, limit_target) or self._claim(axis, self._slot)
         if code:
             self.fail(code, axis)
             return

@@ -235,12 +235,12 @@ def start_limit_error(axis: Axis, direction: int, target: float | None = None) -
 
 # --------------------------------------------------------------------------------------------------- motion base
 _REEXEC_LATCHED = (("Jerk", E.E_REEXEC_JERK), ("BufferMode", E.E_REEXEC_BUFFER_MODE),
-                   ("Direction", E.E_REEXEC_DIRECTION), ("MoveMode", 0x545E))
+                   ("Direction", E.E_REEXEC_DIRECTION), ("MoveMode", 0x545E), ("Continuous", 0x545D))
 
 
 class _MotionFB(ExecuteFB):
     """A motion instruction with a job: state check, input check, submit; re-execution with latched inputs whose
-    change is the manual's 5458/5454/5455/545E error (A-2.3)."""
+    change is the manual's 5458/5454/5455/545E/545D error (A-2.3, A-1 #60)."""
 
     KIND: JobKind
     ACCEPT = "move"  # acceptance class (acceptance.py)
