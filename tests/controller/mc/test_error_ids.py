@@ -1053,3 +1053,129 @@ def test_acceleration_and_deceleration_warnings_are_observations(code: int, stop
     assert ax.state == (S.Stopping if stop else S.Continuous)
     ev = _events(c, code)
     assert ev and ev[-1].level == "observation"
+
+
+# ---------------------------------------------------------------------------------------------------- 3461
+@pytest.mark.parametrize(
+    ("name", "inputs", "removed"),
+    [
+        pytest.param("MC_Home", {"Execute": True}, 0x60BA, id="MC_Home-latch1-ch3 L190"),
+        pytest.param("MC_TouchProbe", {"Execute": True, "TriggerInput": EXT1}, 0x60B9, id="MC_TouchProbe-ch3 L1575"),
+        pytest.param("MC_TouchProbe", {"Execute": True, "TriggerInput": EXT2}, 0x60BC, id="MC_TouchProbe-latch2"),
+        pytest.param("MC_MoveFeed", {"Execute": True, "TriggerInput": EXT1, "Position": 50.0, "MoveMode": "_mcRelative",
+                                     "FeedDistance": 5.0, "FeedVelocity": 10.0, **MOVE}, 0x60B8,
+                     id="MC_MoveFeed-ch3 L685"),
+    ],
+)
+def test_latch_objects_not_mapped_is_3461(name: str, inputs: dict[str, Any], removed: int) -> None:
+    """Instructions that use the drive's touch probe need 60B8h (function), 60B9h (status) and the latch position
+    (60BAh latch 1 / 60BCh latch 2) in the slave's PDO mapping (omron-mc-basics.md §2.11, A-1 3461). The
+    axis's mapped objects stand in for a mapping without one of them."""
+    c = Controller(axis_project(sensors={"HomeProximityStart": 20.0, "HomeProximityEnd": 30.0}))
+    power_on(c)
+    c.mc.pdo_objects[0] = c.mc.pdo_objects[0] - {removed}  # type: ignore[operator]
+    fb = c.fb(name, Axis=AX, **inputs)
+    c.step(1)
+    assert_axis_fault(c, fb, 0x3461)
+
+
+def test_latch_objects_not_needed_by_controller_mode_or_preset() -> None:
+    """A controller-mode trigger (MC_TouchProbe, Mode _mcController) and homing mode 14 (preset) use no drive latch:
+    no 3461 without the touch-probe objects."""
+    c = Controller(axis_project(Homing={"Mode": "_mcHomePreset"}))
+    power_on(c)
+    c.mc.pdo_objects[0] = c.mc.pdo_objects[0] - {0x60B8, 0x60B9, 0x60BA, 0x60BC}  # type: ignore[operator]
+    tp = c.fb("MC_TouchProbe", Axis=AX, Execute=True, TriggerInput={"Mode": "_mcController", "LatchID": "_mcLatch1"})
+    h = c.fb("MC_Home", Axis=AX, Execute=True)
+    c.step(1)
+    assert not tp.Error and tp.Busy
+    step_until(c, h, "Done")
+
+
+# ---------------------------------------------------------------------------------------------------- 6442
+def _overflowed(sign: int = 1) -> Controller:
+    """An axis run into the end of the 40-bit range in Linear Mode: preset near Scale.MaxPos (or MinPos), then a
+    velocity move toward it (decision D28)."""
+    c = Controller(axis_project())
+    power_on(c)
+    edge = (2**39 - 1) / PPU if sign > 0 else -(2**39) / PPU
+    sp = c.fb("MC_SetPosition", Axis=AX, Execute=True, Position=edge - sign * 5.0)
+    step_until(c, sp, "Done")
+    mv = c.fb("MC_MoveVelocity", Axis=AX, Execute=True, Velocity=50.0, Acceleration=1000.0, Deceleration=1000.0,
+              Direction="_mcPositiveDirection" if sign > 0 else "_mcNegativeDirection")
+    step_until(c, mv, "CommandAborted", limit=2000)
+    ax = c.mc.axes[0]
+    assert ax.state == S.Standstill and not ax.error_code, "overflow itself is not an error"
+    assert c.mc.cmd_pos[0] == pytest.approx(edge)
+    assert c.mc.ovf[0] == sign
+    return c
+
+
+@pytest.mark.parametrize("sign", [1, -1], ids=["overflow", "underflow"])
+@pytest.mark.parametrize(
+    ("name", "inputs"),
+    [
+        pytest.param("MC_MoveAbsolute", {"Position": 0.0, **MOVE}, id="positioning"),
+        pytest.param("MC_MoveRelative", {"Distance": "away", **MOVE}, id="positioning-relative-away"),
+        pytest.param("MC_MoveVelocity", {"Direction": "toward", **MOVE}, id="continuous-toward"),
+    ],
+)
+def test_command_position_overflow_is_6442(sign: int, name: str, inputs: dict[str, Any]) -> None:
+    """A-1 #144 (basics L1154): while the command position is in overflow/underflow, a positioning instruction or a
+    continuous instruction toward the overflow direction → 6442, an axis minor fault."""
+    c = _overflowed(sign)
+    if inputs.get("Direction") == "toward":
+        inputs = {**inputs, "Direction": "_mcPositiveDirection" if sign > 0 else "_mcNegativeDirection"}
+    if inputs.get("Distance") == "away":  # even back into the range: any positioning is refused
+        inputs = {**inputs, "Distance": -sign * 1.0}
+    fb = c.fb(name, Axis=AX, Execute=True, **inputs)
+    c.step(1)
+    assert_axis_fault(c, fb, 0x6442)
+
+
+def test_overflow_allows_motion_away_and_is_cleared_by_set_position() -> None:
+    """Continuous motion away from the overflow side is allowed; MC_Reset does not end the overflow, a preset does
+    (A-1 #144: "clear with reset + homing or position preset")."""
+    c = _overflowed(1)
+    away = c.fb("MC_MoveVelocity", Axis=AX, Execute=True, Velocity=10.0, Acceleration=1000.0,
+                Direction="_mcNegativeDirection")
+    c.step(50)
+    assert not away.Error and away.Busy and c.mc.cmd_vel[0] < 0
+    stop = c.fb("MC_Stop", Axis=AX, Execute=True, Deceleration=1000.0)
+    step_until(c, stop, "Done")
+    c.set_inputs(stop.id, {"Execute": False})
+    c.step(1)
+    assert c.mc.ovf[0] == 1
+    sp = c.fb("MC_SetPosition", Axis=AX, Execute=True, Position=0.0)
+    step_until(c, sp, "Done")
+    mv = c.fb("MC_MoveAbsolute", Axis=AX, Execute=True, Position=5.0, **MOVE)
+    step_until(c, mv, "Done")
+    assert c.mc.act_pos[0] == pytest.approx(5.0, abs=0.5 / PPU)  # within a pulse: large offsets round
+
+
+def test_scale_max_and_min_pos_in_linear_mode() -> None:
+    """_sAXIS_REF.Scale.MaxPos/MinPos: in Linear Mode the positions just before overflow/underflow (basics L354)."""
+    from mcstudio.controller.mc.axis import axis_variables
+
+    c = Controller(axis_project())
+    c.step(1)
+    ax = c.mc.axes[0]
+    v = axis_variables(ax, c.publish().mc["discrete"][0], {"cmd_pos": 0.0, "cmd_vel": 0.0, "cmd_accdec": 0.0,
+                                                          "cmd_jerk": 0.0, "act_pos": 0.0, "act_vel": 0.0,
+                                                          "drv": {}})
+    assert v["Scale"]["MaxPos"] == pytest.approx((2**39 - 1) / PPU)
+    assert v["Scale"]["MinPos"] == pytest.approx(-(2**39) / PPU)
+
+
+def test_move_feed_beyond_the_range_is_6442_at_the_interrupt() -> None:
+    """ch3 L684: an interrupt feed whose position would overflow → error at the interrupt input (6442)."""
+    c = Controller(axis_project(sensors={"ExternalHomeStart": 2.0, "ExternalHomeEnd": 3.0}))
+    power_on(c)
+    edge = (2**39 - 1) / PPU
+    sp = c.fb("MC_SetPosition", Axis=AX, Execute=True, Position=edge - 10.0)  # the sensor is now at edge − 8
+    step_until(c, sp, "Done")
+    mf = c.fb("MC_MoveFeed", Axis=AX, Execute=True, TriggerInput=EXT1, MoveMode="_mcVelocity", Velocity=10.0,
+              Acceleration=1000.0, Deceleration=1000.0, FeedDistance=20.0, FeedVelocity=10.0)
+    step_until(c, mf, "Error", limit=2000)
+    assert_axis_fault(c, mf, 0x6442)
+    assert float(c.mc.cmd_pos[0]) < edge

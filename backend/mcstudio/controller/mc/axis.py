@@ -107,6 +107,36 @@ class Axis(AxisPlanning):
     def homed(self, value: bool) -> None:
         self._homed = value
         self.m.homed[self.i] = value
+        if value:
+            self.m.ovf[self.i] = 0  # homing (or a preset) ends an overflow/underflow
+
+    def position_overflow(self, sign: int) -> None:
+        """Linear Mode: the command position reached the end of the signed 40-bit pulse range. The command stops at
+        Scale.MaxPos/MinPos, the running instruction is CommandAborted and the axis is in overflow/underflow: until
+        MC_SetPosition or homing, positioning, motion toward that end and torque control give 6442 (D28)."""
+        m, i = self.m, self.i
+        m.cmd_pos[i] = m.lin_max[i] if sign > 0 else m.lin_min[i]
+        m.ovf[i] = sign
+        self.abort_all()
+        self.halt()
+        if self.state != S.ErrorStop:
+            self._set_state(self._rest_state())
+        m.log_info(self, f"{self.name}: command position {'overflow' if sign > 0 else 'underflow'} at "
+                         f"{float(m.cmd_pos[i]):.6g} (end of the 40-bit pulse range); preset the position "
+                         "(MC_SetPosition) or home before positioning again (6442)")
+
+    def overflow_refusal(self, job: Job) -> int:
+        """6442 for an instruction the overflow/underflow state forbids (A-1 #144), else 0."""
+        sign = int(self.m.ovf[self.i])
+        if not sign:
+            return 0
+        if job.kind in (JobKind.POSITION, JobKind.TORQUE):
+            return E.E_POSITION_OVERFLOW
+        if job.kind in (JobKind.VELOCITY, JobKind.JOG):
+            direction = (job.velocity > 0) - (job.velocity < 0)
+            if direction in (0, sign):
+                return E.E_POSITION_OVERFLOW
+        return 0
 
     @property
     def servo_on(self) -> bool:
@@ -322,6 +352,9 @@ class Axis(AxisPlanning):
 
     def submit(self, job: Job) -> int:
         """Start or buffer `job` according to its BufferMode. Returns an ErrorID (0 = accepted)."""
+        refusal = self.overflow_refusal(job)
+        if refusal:
+            return refusal
         mode = job.buffer_mode
         cur = self.current
         if mode == _eMC_BUFFER_MODE._mcAborting or cur is None or cur.kind not in MOTION_KINDS:
@@ -494,6 +527,7 @@ class Axis(AxisPlanning):
         delta = position - float(m.cmd_pos[i])
         m.shift_coordinates(i, delta)
         self.homed = False
+        m.ovf[i] = 0  # a preset ends an overflow/underflow (A-1 #144)
         for job in (self.current, self.buffered):
             if job is None:
                 continue
@@ -564,7 +598,8 @@ def axis_variables(axis: Axis, discrete: tuple[int, int, int, bool, bool, bool],
             "Den": p.UnitConversion.WorkTravelDistancePerMotorRotation,
             "Units": p.UnitConversion.UnitDisplay.name,
             "CountMode": p.PosCount.CountMode.name,
-            "MaxPos": p.PosCount.ModuloMaxPosVal,
-            "MinPos": p.PosCount.ModuloMinPosVal,
+            # Linear Mode: the positions just before overflow/underflow; Rotary Mode: the ring counter limits
+            "MaxPos": p.PosCount.ModuloMaxPosVal if axis.rotary else float(axis.m.lin_max[axis.i]),
+            "MinPos": p.PosCount.ModuloMinPosVal if axis.rotary else float(axis.m.lin_min[axis.i]),
         },
     }

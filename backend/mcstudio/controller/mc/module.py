@@ -133,6 +133,11 @@ class MotionModule:
         self.dec_warn = np.zeros(n)
         self.max_dec = np.zeros(n)
         self.homed = np.array([a.homed for a in self.axes], dtype=bool)
+        # Linear Mode: the command position spans signed 40 bits in pulses (Scale.MinPos … Scale.MaxPos); beyond, the
+        # axis is in overflow (+1) / underflow (−1) until MC_SetPosition or homing (6442, decision D28)
+        self.lin_max = np.zeros(n)
+        self.lin_min = np.zeros(n)
+        self.ovf = np.zeros(n, dtype=np.int8)
         self.fe_check = np.ones(n, dtype=bool)  # FALSE during the push phase of homing
         self.limit_check = np.ones(n, dtype=bool)  # FALSE while homing handles the limit inputs itself
         # torque control (MC_TorqueControl, MC_SetTorqueLimit); torques in % of the rated torque, signed
@@ -202,6 +207,8 @@ class MotionModule:
         self.acc_warn[i] = op.MaxAcc * op.AccWarningVal / 100.0
         self.dec_warn[i] = op.MaxDec * op.DecWarningVal / 100.0
         self.max_dec[i] = op.MaxDec
+        self.lin_max[i] = (2**39 - 1) / self.ppu[i]
+        self.lin_min[i] = -(2**39) / self.ppu[i]
         self.set_input_inversion(axis)
         axis.apply_torque_limits()
 

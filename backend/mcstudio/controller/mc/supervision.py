@@ -58,6 +58,14 @@ def supervise(m: MotionModule) -> None:
     sw = on & (m.sw_mode > 0) & ~m.rotary & m.homed & ~homing & (m.state != AxisState.ErrorStop)
     if sw.any():
         _software_limits(m, sw, T)
+    # ---- Linear Mode: the command position leaves the signed 40-bit pulse range (not in torque control, where
+    # overflow is "motion without a target position")
+    lin = on & ~m.rotary & ~m.trq_active
+    hi = lin & (m.cmd_pos > m.lin_max)
+    lo = lin & (m.cmd_pos < m.lin_min)
+    if hi.any() or lo.any():
+        for i in np.flatnonzero(hi | lo):
+            m.axes[i].position_overflow(1 if hi[i] else -1)
     # ---- warnings (observations)
     _observe(m, E.O_VELOCITY_WARNING, on & (m.vel_warn > 0) & (np.abs(vel) > m.vel_warn), on)
     _observe(m, E.O_ACCELERATION_WARNING, on & (m.acc_warn > 0) & (m.cmd_accdec > m.acc_warn), on)

@@ -16,6 +16,9 @@ if TYPE_CHECKING:
     from ..axis import Axis
 
 _OUTPUTS = (O_DONE, O_BUSY, O_ABORTED, O_ERROR, O_ERRORID)
+# modes that use no latch (11 limit inputs only, 12 holding time, 14 preset) need no touch-probe objects (3461)
+_NO_LATCH_MODES = (11, 12, 14)
+_HOMING_LATCH_PDO = (0x60B8, 0x60B9, 0x60BA)
 _M = _eMC_HOMING_MODE
 # members of _sHOMING_REF with their 5700 detail code and default
 HOMING_REF_MEMBERS: tuple[tuple[str, int, Any], ...] = (
@@ -161,6 +164,9 @@ class MC_Home(ExecuteFB):
             return
         params = self.homing_params(axis)
         if params is None:
+            return
+        if params.mode not in _NO_LATCH_MODES and axis.pdo_missing(_HOMING_LATCH_PDO):
+            self.fail(E.E_PDO_MISSING, axis)  # the latch objects are not mapped (omron-mc-basics.md §2.11)
             return
         job = Job(JobKind.HOMING, self)
         axis.abort_all()

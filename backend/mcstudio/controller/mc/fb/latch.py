@@ -55,6 +55,17 @@ I_FIRST = Var("FirstPosition", "LREAL", 0.0, "Window start", "unit")
 I_LAST = Var("LastPosition", "LREAL", 0.0, "Window end", "unit")
 
 
+# objects a drive-mode latch needs in the slave's PDO mapping (omron-mc-basics.md §2.11; else 3461)
+LATCH_PDO = {1: (0x60B8, 0x60B9, 0x60BA), 2: (0x60B8, 0x60B9, 0x60BC)}
+
+
+def latch_pdo_missing(axis: Axis, mode: int, slot: int) -> int:
+    """3461 when a drive-mode trigger's latch objects are not mapped for the axis's slave, else 0."""
+    if mode == _eMC_TRIGGER_MODE._mcDrive and slot in LATCH_PDO and axis.pdo_missing(LATCH_PDO[slot]):
+        return E.E_PDO_MISSING
+    return 0
+
+
 def parse_trigger(ref: dict[str, Any] | None) -> tuple[int, int, int, int]:
     """_sTRIGGER_REF → (error, mode, latch slot 1/2, z_phase). Out-of-range members give 5450/544E/5451."""
     ref = ref or {}
@@ -195,7 +206,7 @@ class MC_TouchProbe(_Latcher, ExecuteFB):
             return
         i = self.inp
         err, self._mode, self._slot, self._z = parse_trigger(i.get("TriggerInput"))
-        code = code or err
+        code = code or err or latch_pdo_missing(axis, self._mode, self._slot)
         if not code and i["StopMode"] not in (1, 4):
             code = E.E_STOP_MODE
         if not code and i["ReferenceType"] != 1:
@@ -356,7 +367,7 @@ class MC_MoveFeed(_Latcher, ExecuteFB):
             return
         i = self.inp
         err, self._mode, self._slot, self._z = parse_trigger(i.get("TriggerInput"))
-        code = self._check(axis) or err or code
+        code = self._check(axis) or err or code or latch_pdo_missing(axis, self._mode, self._slot)
         if code:
             self.fail(code, axis)
             return
@@ -410,9 +421,18 @@ class MC_MoveFeed(_Latcher, ExecuteFB):
         sign = 1.0 if float(axis.m.prof_vel[axis.i]) >= 0 else -1.0
         if job.kind == JobKind.VELOCITY:
             sign = 1.0 if job.velocity >= 0 else -1.0
+        target = pos + sign * i["FeedDistance"]
+        if not axis.rotary and not (axis.m.lin_min[axis.i] <= target <= axis.m.lin_max[axis.i]):
+            # the feed would leave the 40-bit range: error at the interrupt input (MC_MoveFeed rules, ch3 L684)
+            self._release()
+            axis.raise_error(E.E_POSITION_OVERFLOW, source=self.label,
+                             detail=f"feed target {target:.6g} beyond the 40-bit pulse range")
+            job.status = JobStatus.ERROR
+            job.error_id = E.E_POSITION_OVERFLOW
+            return
         feed = Job(JobKind.POSITION, self, velocity=min(i["FeedVelocity"], axis.params.Operation.MaxVel),
                    acceleration=job.acceleration, deceleration=job.deceleration, jerk=job.jerk, overridable=True,
-                   target=pos + sign * i["FeedDistance"])
+                   target=target)
         feed.info["feed"] = True
         feed.status = JobStatus.ACTIVE
         axis.current = feed
