@@ -58,7 +58,7 @@ class Studio:
             mode=st.mode,
             period_s=snap.period_s,
             cycle=snap.cycle,
-            time_s=snap.time_s,
+            time_s=round(snap.time_s, 9),
             rtf=round(st.rtf, 3),
             overruns=st.overruns,
             project=snap.project,
