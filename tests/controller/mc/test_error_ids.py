@@ -1118,11 +1118,13 @@ def _overflowed(sign: int = 1) -> Controller:
         pytest.param("MC_MoveAbsolute", {"Position": 0.0, **MOVE}, id="positioning"),
         pytest.param("MC_MoveRelative", {"Distance": "away", **MOVE}, id="positioning-relative-away"),
         pytest.param("MC_MoveVelocity", {"Direction": "toward", **MOVE}, id="continuous-toward"),
+        pytest.param("MC_TorqueControl", {"Torque": 10.0, "TorqueRamp": 0.0, "Velocity": 10.0}, id="torque"),
     ],
 )
 def test_command_position_overflow_is_6442(sign: int, name: str, inputs: dict[str, Any]) -> None:
-    """A-1 #144 (basics L1154): while the command position is in overflow/underflow, a positioning instruction or a
-    continuous instruction toward the overflow direction → 6442, an axis minor fault."""
+    """A-1 #144 (basics L1154): while the command position is in overflow/underflow, a positioning instruction, a
+    continuous instruction toward the overflow direction or a direction-less one (torque control) → 6442, an axis
+    minor fault."""
     c = _overflowed(sign)
     if inputs.get("Direction") == "toward":
         inputs = {**inputs, "Direction": "_mcPositiveDirection" if sign > 0 else "_mcNegativeDirection"}
