@@ -60,11 +60,10 @@ def supervise(m: MotionModule) -> None:
         _software_limits(m, sw, T)
     # ---- Linear Mode: the command position leaves the signed 40-bit pulse range (not in torque control, where
     # overflow is "motion without a target position")
-    lin = on & ~m.rotary & ~m.trq_active
-    hi = lin & (m.cmd_pos > m.lin_max)
-    lo = lin & (m.cmd_pos < m.lin_min)
-    if hi.any() or lo.any():
-        for i in np.flatnonzero(hi | lo):
+    hi = m.cmd_pos > m.lin_max
+    out = hi | (m.cmd_pos < m.lin_min)
+    if out.any():  # rare: build the masks only then
+        for i in np.flatnonzero(out & on & ~m.rotary & ~m.trq_active):
             m.axes[i].position_overflow(1 if hi[i] else -1)
     # ---- warnings (observations)
     _observe(m, E.O_VELOCITY_WARNING, on & (m.vel_warn > 0) & (np.abs(vel) > m.vel_warn), on)

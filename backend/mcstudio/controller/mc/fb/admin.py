@@ -21,6 +21,7 @@ from .base import (
     ExecuteFB,
     FBDef,
     FunctionBlock,
+    OneShotFB,
     Var,
 )
 
@@ -75,7 +76,7 @@ class _EnableFB(FunctionBlock):
 
 
 # --------------------------------------------------------------------------------------------------- ImmediateStop
-class MC_ImmediateStop(ExecuteFB):
+class MC_ImmediateStop(OneShotFB):
     DEF = FBDef(
         name="MC_ImmediateStop",
         title="Immediate stop",
@@ -90,7 +91,6 @@ class MC_ImmediateStop(ExecuteFB):
         outputs=(O_DONE, O_BUSY, O_ABORTED, O_ERROR, O_ERRORID),
         spec="omron-axis-instructions.md MC_ImmediateStop (seed 000 line 6019)",
     )
-    HAS_ACTIVE = False
 
     def execute(self, axis: Axis) -> None:
         mode = self.inp["StopMode"]
@@ -101,16 +101,11 @@ class MC_ImmediateStop(ExecuteFB):
             self.fail(E.E_AXIS_TYPE, axis)
             return
         axis.immediate_stop(mode, self.label)
-        self._result = "Done"
-
-    def sync_job(self) -> None:
-        if getattr(self, "_result", None):
-            self._result = None
-            self._finish("Done")
+        self.done_next()
 
 
 # --------------------------------------------------------------------------------------------------- SetPosition
-class MC_SetPosition(ExecuteFB):
+class MC_SetPosition(OneShotFB):
     DEF = FBDef(
         name="MC_SetPosition",
         title="Set position",
@@ -128,7 +123,6 @@ class MC_SetPosition(ExecuteFB):
         outputs=(O_DONE, O_BUSY, O_ABORTED, O_ERROR, O_ERRORID),
         spec="omron-axis-instructions.md MC_SetPosition (seed 000 line 6146)",
     )
-    HAS_ACTIVE = False
     _BLOCKING = (JobKind.JOG, JobKind.HOMING, JobKind.TORQUE)  # + MC_TorqueControl: footnote *5
 
     def execute(self, axis: Axis) -> None:
@@ -157,12 +151,7 @@ class MC_SetPosition(ExecuteFB):
             self.fail(code, axis)
             return
         axis.set_position(axis.wrap(pos) if axis.rotary else pos)
-        self._result = "Done"
-
-    def sync_job(self) -> None:
-        if getattr(self, "_result", None):
-            self._result = None
-            self._finish("Done")
+        self.done_next()
 
 
 # --------------------------------------------------------------------------------------------------- SetOverride
@@ -345,7 +334,7 @@ class MC_AxesObserve(_EnableFB):
 
 
 # --------------------------------------------------------------------------------------------------- ChangeAxisUse
-class MC_ChangeAxisUse(ExecuteFB):
+class MC_ChangeAxisUse(OneShotFB):
     DEF = FBDef(
         name="MC_ChangeAxisUse",
         title="Change axis use",
@@ -357,7 +346,6 @@ class MC_ChangeAxisUse(ExecuteFB):
         outputs=(O_DONE, O_BUSY, O_ABORTED, O_ERROR, O_ERRORID),
         spec="omron-axis-instructions.md MC_ChangeAxisUse (seed 000 line 12758)",
     )
-    HAS_ACTIVE = False
 
     def resolve_axis(self, name_input: str = "Axis", *, allow_unused: bool = True) -> Axis | None:
         # works on unused axes too
@@ -381,12 +369,7 @@ class MC_ChangeAxisUse(ExecuteFB):
             axis.used = True
             axis.error_code = 0
         self.mc.log_info(axis, f"{axis.name} is now a {'used' if axis.used else 'unused'} axis")
-        self._result = "Done"
-
-    def sync_job(self) -> None:
-        if getattr(self, "_result", None):
-            self._result = None
-            self._finish("Done")
+        self.done_next()
 
 
 ADMIN_CLASSES: tuple[type[FunctionBlock], ...] = (

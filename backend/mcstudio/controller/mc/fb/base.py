@@ -420,3 +420,19 @@ class ExecuteFB(FunctionBlock):
             self.fail(err, axis)
             return
         self.job = job
+
+
+class OneShotFB(ExecuteFB):
+    """Execute-type instruction completed by its own call, without a motion job: its end flag (Done, or Failure for
+    MC_Reset) shows in the next period, as the manual's charts draw it."""
+
+    HAS_ACTIVE = False
+    _result: str | None = None
+
+    def done_next(self, flag: str = "Done") -> None:
+        self._result = flag
+
+    def sync_job(self) -> None:
+        if self._result:
+            flag, self._result = self._result, None
+            self._finish(flag)

@@ -11,26 +11,12 @@ from ....project.checks import RANGE_CODES, check_axis_parameters
 from ....project.models import AxisParameters
 from .. import errors as E
 from ..enums import _eMC_SWLMT_MODE
-from .base import I_EXECUTE, IO_AXIS, O_ABORTED, O_BUSY, O_DONE, O_ERROR, O_ERRORID, ExecuteFB, FBDef, Var
+from .base import I_EXECUTE, IO_AXIS, O_ABORTED, O_BUSY, O_DONE, O_ERROR, O_ERRORID, FBDef, OneShotFB, Var
 
 if TYPE_CHECKING:
     from ..axis import Axis
 
 _OUT = (O_DONE, O_BUSY, O_ABORTED, O_ERROR, O_ERRORID)
-
-
-class _OneShot(ExecuteFB):
-    """Execute-type instruction completed by its call: Done in the next period."""
-
-    HAS_ACTIVE = False
-
-    def done_next(self) -> None:
-        self._result = "Done"
-
-    def sync_job(self) -> None:
-        if getattr(self, "_result", None):
-            self._result = None
-            self._finish("Done")
 
 
 # ParameterNumber → (group, member, SettingValue type, check)
@@ -72,7 +58,7 @@ def _setting(kind: str, value: Any) -> Any:
     return v
 
 
-class MC_Write(_OneShot):
+class MC_Write(OneShotFB):
     DEF = FBDef(
         name="MC_Write",
         title="Write MC setting",
@@ -121,7 +107,7 @@ class MC_Write(_OneShot):
         self.mc.log_error(code, axis=None, source=self.label)
 
 
-class MC_WriteAxisParameter(_OneShot):
+class MC_WriteAxisParameter(OneShotFB):
     DEF = FBDef(
         name="MC_WriteAxisParameter",
         title="Write axis parameters",
@@ -163,7 +149,7 @@ class MC_WriteAxisParameter(_OneShot):
                           detail=f"ErrorParameterCode {parameter_code:04X}" + (f" ({detail})" if detail else ""))
 
 
-class MC_ReadAxisParameter(_OneShot):
+class MC_ReadAxisParameter(OneShotFB):
     DEF = FBDef(
         name="MC_ReadAxisParameter",
         title="Read axis parameters",

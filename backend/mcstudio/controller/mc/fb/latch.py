@@ -32,6 +32,7 @@ from .base import (
     O_ERRORID,
     ExecuteFB,
     FBDef,
+    OneShotFB,
     Var,
 )
 from .single_axis import (
@@ -258,7 +259,7 @@ class MC_TouchProbe(_Latcher, ExecuteFB):
             self._finish("CommandAborted")
 
 
-class MC_AbortTrigger(ExecuteFB):
+class MC_AbortTrigger(OneShotFB):
     DEF = FBDef(
         name="MC_AbortTrigger",
         title="Disable external latch",
@@ -269,7 +270,6 @@ class MC_AbortTrigger(ExecuteFB):
         outputs=(O_DONE, O_BUSY, O_ABORTED, O_ERROR, O_ERRORID),
         spec="omron-axis-instructions.md MC_AbortTrigger (seed 000 line 11881)",
     )
-    HAS_ACTIVE = False
 
     def execute(self, axis: Axis) -> None:
         _, code = axis.check_start("latch")
@@ -283,12 +283,7 @@ class MC_AbortTrigger(ExecuteFB):
             return
         if isinstance(owner, MC_TouchProbe):
             owner.abort_latch()
-        self._result = "Done"  # Done one period after Execute
-
-    def sync_job(self) -> None:
-        if getattr(self, "_result", None):
-            self._result = None
-            self._finish("Done")
+        self.done_next()  # Done one period after Execute
 
 
 class MC_MoveFeed(_Latcher, ExecuteFB):

@@ -23,6 +23,7 @@ from .base import (
     ExecuteFB,
     FBDef,
     FunctionBlock,
+    OneShotFB,
     Var,
 )
 
@@ -117,7 +118,7 @@ class MC_Power(FunctionBlock):
 
 
 # --------------------------------------------------------------------------------------------------- MC_Reset
-class MC_Reset(ExecuteFB):
+class MC_Reset(OneShotFB):
     DEF = FBDef(
         name="MC_Reset",
         title="Reset axis error",
@@ -134,17 +135,9 @@ class MC_Reset(ExecuteFB):
         ),
         spec="omron-axis-instructions.md MC_Reset (seed 000 line 12664)",
     )
-    HAS_ACTIVE = False
 
     def execute(self, axis: Axis) -> None:
-        ok = axis.reset()
-        self._result = "Done" if ok else "Failure"
-
-    def sync_job(self) -> None:
-        result = getattr(self, "_result", None)
-        if result:
-            self._result = None
-            self._finish(result)
+        self.done_next("Done" if axis.reset() else "Failure")
 
 
 # --------------------------------------------------------------------------------------------------- MC_Stop
