@@ -116,3 +116,32 @@ def test_home_override_and_immediate_stop_from_the_test_run(page, server: Server
     page.get_by_test_id("axis-state").filter(has_text=re.compile(r"^Standstill$")).wait_for(timeout=5000)
     page.get_by_test_id("error-id").filter(has_text="0000").wait_for()
     assert not _unexpected(page.console_errors), page.console_errors
+
+
+def test_torque_control_from_the_test_run(page, server: Server) -> None:
+    """MC_TorqueControl from the test run: the drive goes to CST (DrvStatus.CST), the axis is Continuous, the actual
+    torque follows the command and the speed limit holds the velocity (omron-axis-instructions.md MC_TorqueControl);
+    MC_Stop brings it back to position control at Standstill."""
+    page.goto(server.base + "/")
+    page.get_by_test_id("ws-status").filter(has_text="live").wait_for(timeout=15000)
+    page.get_by_test_id("nav-axis-MC_Axis002").click()
+    if page.get_by_test_id("servo-status").inner_text().strip() != "ON":
+        page.get_by_test_id("servo-toggle").click()
+    page.get_by_test_id("servo-status").filter(has_text=re.compile(r"^ON$")).wait_for(timeout=10000)
+    page.get_by_test_id("trq-torque").fill("10")
+    page.get_by_test_id("trq-ramp").fill("100")
+    page.get_by_test_id("trq-velocity").fill("20")
+    page.get_by_test_id("trq-execute").click()
+    page.get_by_test_id("axis-state").filter(has_text=re.compile(r"^Continuous$")).wait_for(timeout=5000)
+    page.locator("[data-testid=drv-CST][data-active=true]").wait_for(timeout=5000)
+    # the ramp reaches 10 % after 0.1 s; the speed limit then caps the velocity at 20 mm/s
+    page.wait_for_function(
+        "() => parseFloat(document.querySelector('[data-testid=cmd-trq]').textContent) === 10", timeout=10000)
+    page.wait_for_function(
+        "() => Math.abs(parseFloat(document.querySelector('[data-testid=act-vel]').textContent) - 20) < 0.5",
+        timeout=15000)
+    page.screenshot(path=str(ARTIFACTS / "15-torque-control.png"))
+    page.get_by_test_id("stop-button").click()
+    page.get_by_test_id("axis-state").filter(has_text=re.compile(r"^Standstill$")).wait_for(timeout=10000)
+    page.locator("[data-testid=drv-CSP][data-active=true]").wait_for(timeout=5000)
+    assert not _unexpected(page.console_errors), page.console_errors

@@ -34,6 +34,11 @@ export interface AxisForms {
   setPosition: NumValue;
   /** MC_ImmediateStop StopMode: "1", "2" or "3" */
   immediateStopMode: string;
+  /** MC_TorqueControl: Torque [%], TorqueRamp [%/s], Velocity (speed limit), Direction */
+  trqTorque: NumValue;
+  trqRamp: NumValue;
+  trqVelocity: NumValue;
+  trqDirection: string;
 }
 
 export const FORM_DEFAULTS: AxisForms = {
@@ -59,6 +64,10 @@ export const FORM_DEFAULTS: AxisForms = {
   inchDistance: 1,
   setPosition: 0,
   immediateStopMode: "1",
+  trqTorque: 10,
+  trqRamp: 100,
+  trqVelocity: 20,
+  trqDirection: "_mcPositiveDirection",
 };
 
 export const formsStore = createStore<Readonly<Record<string, AxisForms>>>({});

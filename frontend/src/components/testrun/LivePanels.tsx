@@ -54,6 +54,12 @@ export function PositionPanel({ axis, units }: { axis: string; units: AxisUnits 
         <Value label="Command acc./dec.">
           <Num value={v.Cmd.AccDec} decimals={1} unit={units.acc} testId="cmd-accdec" />
         </Value>
+        <Value label="Command torque">
+          <Num value={v.Cmd.Trq} decimals={1} unit="%" testId="cmd-trq" />
+        </Value>
+        <Value label="Actual torque">
+          <Num value={v.Act.Trq} decimals={1} unit="%" testId="act-trq" />
+        </Value>
       </SimpleGrid>
     </Panel>
   );

@@ -181,13 +181,78 @@ function MoveRow({ axis, units, def }: { axis: string; units: AxisUnits; def: Mo
   );
 }
 
+const TORQUE_DIRECTIONS = DIRECTIONS.slice(0, 2);
+
+/** MC_TorqueControl: the drive in cyclic synchronous torque mode with a ramp and a speed limit (Aborting). */
+function TorqueRow({ axis, units }: { axis: string; units: AxisUnits }) {
+  const f = useAxisForms(axis);
+  const [busy, setBusy] = useState(false);
+  const submit = async (e: FormEvent) => {
+    e.preventDefault();
+    const forms = axisForms(axis);
+    const torque = num(forms.trqTorque);
+    const ramp = num(forms.trqRamp);
+    const velocity = num(forms.trqVelocity);
+    if (torque === null || ramp === null || velocity === null) {
+      notifyError("MC_TorqueControl", new Error("Torque, TorqueRamp and Velocity: enter numbers"));
+      return;
+    }
+    setBusy(true);
+    await issue(axis, "MC_TorqueControl", {
+      Torque: torque,
+      TorqueRamp: ramp,
+      Velocity: velocity,
+      Direction: forms.trqDirection,
+    });
+    setBusy(false);
+  };
+  return (
+    <form onSubmit={(e) => void submit(e)} noValidate data-testid="trq-form">
+      <Box
+        mt={8}
+        pt={8}
+        style={{
+          borderTop: "1px solid var(--mantine-color-gray-2)",
+          display: "grid",
+          gridTemplateColumns: "58px minmax(0, 1.4fr) repeat(3, minmax(0, 1fr)) auto",
+          columnGap: 6,
+          alignItems: "end",
+        }}
+      >
+        <Text size="xs" fw={600} title="MC_TorqueControl" pb={8}>
+          Torque
+        </Text>
+        <NativeSelect
+          label="Direction"
+          data={TORQUE_DIRECTIONS}
+          value={f.trqDirection}
+          onChange={(e) => setFormField(axis, "trqDirection", e.currentTarget.value)}
+          data-testid="trq-direction"
+          rightSectionWidth={18}
+          styles={{ label: { fontSize: 11, color: "var(--mantine-color-gray-7)" }, input: { paddingLeft: 6 } }}
+        />
+        <NumField label="Torque" unit="%" value={f.trqTorque} testId="trq-torque"
+          onChange={(v) => setFormField(axis, "trqTorque", v)} />
+        <NumField label="Ramp" unit="%/s" value={f.trqRamp} testId="trq-ramp"
+          onChange={(v) => setFormField(axis, "trqRamp", v)} />
+        <NumField label="Speed limit" unit={units.vel} value={f.trqVelocity} testId="trq-velocity"
+          onChange={(v) => setFormField(axis, "trqVelocity", v)} />
+        <Button type="submit" data-testid="trq-execute" leftSection={<IconPlayerPlay size={12} />} loading={busy}
+          px={10}>
+          Execute
+        </Button>
+      </Box>
+    </form>
+  );
+}
+
 /**
  * Absolute, relative and velocity moves: each Execute creates a new instance with Execute TRUE, with the row's
  * BufferMode (Aborting, Buffered or a Blending mode; the options are those the instruction accepts per fb-types).
  */
 export function MoveForms({ axis, units }: { axis: string; units: AxisUnits }) {
   return (
-    <Panel title="Positioning (MC_MoveAbsolute, MC_MoveRelative, MC_MoveVelocity)" testId="move-panel">
+    <Panel title="Motion (MC_MoveAbsolute, MC_MoveRelative, MC_MoveVelocity, MC_TorqueControl)" testId="move-panel">
       <Box
         style={{
           display: "grid",
@@ -215,6 +280,7 @@ export function MoveForms({ axis, units }: { axis: string; units: AxisUnits }) {
           </Fragment>
         ))}
       </Box>
+      <TorqueRow axis={axis} units={units} />
     </Panel>
   );
 }
