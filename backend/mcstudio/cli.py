@@ -36,18 +36,20 @@ def _cmd_serve(args: argparse.Namespace) -> int:
     from .api.state import Studio
     from .controller.kernel import Controller
     from .controller.runner import Runner
+    from .fieldbus.library import DeviceLibrary
     from .project.io import ProjectError, load_project
 
     logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
     project_dir = Path(args.project).resolve()
+    library = DeviceLibrary(project_dir)
     try:
-        project = load_project(project_dir)
+        project = load_project(project_dir, library)
     except ProjectError as err:
         print(f"cannot start: {err}", file=sys.stderr)
         return 2
     if args.host not in ("127.0.0.1", "localhost", "::1"):
         print(f"WARNING: serving on {args.host}: anyone who reaches this address can move the axes.", file=sys.stderr)
-    runner = Runner(Controller(project), mode=args.mode)
+    runner = Runner(Controller(project, library=library), mode=args.mode)
     viz = None
     if args.viser_port != 0:
         from .viz.scene import SceneServer

@@ -11,6 +11,7 @@ import { App } from "./App";
 import { startAxisConfig } from "./store/axisConfig";
 import { startCatalog } from "./store/catalog";
 import { startCommands } from "./store/commands";
+import { startEthercat } from "./store/ethercat";
 import { startEvents } from "./store/events";
 import { startLive } from "./store/live";
 import { theme } from "./theme";
@@ -21,6 +22,7 @@ startCatalog();
 startAxisConfig();
 startEvents();
 startCommands();
+startEthercat();
 
 const root = document.getElementById("root");
 if (!root) throw new Error("#root missing from index.html");

@@ -1,12 +1,23 @@
-"""The process image is the bytes of the PDO mapping (little-endian, packed, in mapping order)."""
+"""The process image is the bytes of the PDO mapping (little-endian, packed, in mapping order), every period."""
 
 from __future__ import annotations
 
-from mcstudio.fieldbus.network import RX_DTYPE, TX_DTYPE, Network
+from mcstudio.fieldbus.config import resolve_slaves
+from mcstudio.fieldbus.network import Network
+from mcstudio.fieldbus.pdo import PdoEntryConfig, PdoMappingConfig, SlavePdoConfig
+from mcstudio.project.models import EtherCATSlaveConfig
+from tests.conftest import small_project
 
 
-def test_rx_bytes_equal_hand_computed() -> None:
-    net = Network([1], ["Node1"])
+def _net(**slave1: object) -> Network:
+    p = small_project()
+    if slave1:
+        p.ethercat.slaves = [EtherCATSlaveConfig(node_address=1, **slave1), EtherCATSlaveConfig(node_address=2)]
+    return Network(resolve_slaves(p))
+
+
+def test_rx_bytes_on_the_wire_equal_hand_computed() -> None:
+    net = _net()
     rx = net.rx
     rx["controlword"][0] = 0x000F
     rx["target_position"][0] = 0x01020304
@@ -17,15 +28,17 @@ def test_rx_bytes_equal_hand_computed() -> None:
     rx["max_profile_velocity"][0] = 0x00010000
     rx["positive_torque_limit"][0] = 3000
     rx["negative_torque_limit"][0] = 1000
+    net.exchange()
     rx_bytes, _ = net.image_bytes(0)
     # 6040h UINT | 607Ah DINT | 60FFh DINT | 6071h INT | 6060h SINT | 60B8h UINT | 607Fh UDINT | 60E0h UINT | 60E1h UINT
     assert rx_bytes == bytes([0x0F, 0x00, 0x04, 0x03, 0x02, 0x01, 0xFE, 0xFF, 0xFF, 0xFF, 0x0B, 0x0A, 0x08,
                               0x11, 0x00, 0x00, 0x00, 0x01, 0x00, 0xB8, 0x0B, 0xE8, 0x03])
-    assert RX_DTYPE.itemsize == 23 and TX_DTYPE.itemsize == 29
+    # and the drive received exactly these values
+    assert int(net.drive_rx["target_position"][0]) == 0x01020304 and int(net.drive_rx["target_velocity"][0]) == -2
 
 
 def test_tx_bytes_follow_the_drive() -> None:
-    net = Network([1, 2], ["Node1", "Node2"])
+    net = _net()
     for cw in (0x0006, 0x0007, 0x000F):
         net.rx["controlword"][1] = cw
         net.rx["modes_of_operation"][1] = 8
@@ -39,3 +52,37 @@ def test_tx_bytes_follow_the_drive() -> None:
     assert tx[14] == 8  # 6061h modes of operation display (after 603Fh, 6041h, 6064h, 606Ch, 6077h)
     _, tx0 = net.image_bytes(0)
     assert int.from_bytes(tx0[4:8], "little", signed=True) == 0, "slave 0 not enabled: it does not move"
+
+
+def test_only_mapped_objects_cross_the_wire() -> None:
+    """A mapping without 60FFh: the master's target velocity never reaches the drive; one without 606Ch: the master
+    reads 0 for the actual velocity while the drive computes it."""
+    pdo = SlavePdoConfig(rx_assign=[0x1600], tx_assign=[0x1A00], mappings=[
+        PdoMappingConfig(index=0x1600, entries=[PdoEntryConfig(index=0x6040, bit_len=16),
+                                                PdoEntryConfig(index=0x607A, bit_len=32)]),
+        PdoMappingConfig(index=0x1A00, entries=[PdoEntryConfig(index=0x6041, bit_len=16),
+                                                PdoEntryConfig(index=0x6064, bit_len=32)])])
+    net = _net(pdo=pdo)
+    net.rx["target_velocity"][0] = 1234
+    net.rx["target_position"][0] = 77
+    net.exchange()
+    assert int(net.drive_rx["target_velocity"][0]) == 0 and int(net.drive_rx["target_position"][0]) == 77
+    rx, tx = net.image_bytes(0)
+    assert len(rx) == 6 and len(tx) == 6
+    assert net.mapped_objects(0) == frozenset({0x6040, 0x607A, 0x6041, 0x6064})
+
+
+def test_startup_sdos_are_written_in_preop() -> None:
+    net = _net(startup_sdos=[{"index": 0x6065, "value": 5000, "bit_len": 32},
+                             {"index": 0x6060, "value": 9, "bit_len": 8}])
+    assert int(net.drive_rx["following_error_window"][0]) == 5000
+    assert net.slaves[0].state.name == "Op"
+    assert any("6065h:00h ← 5000" in line for line in net.slaves[0].sdo_log)
+
+
+def test_startup_sdo_abort_stops_that_slave_only() -> None:
+    net = _net(startup_sdos=[{"index": 0x2999, "value": 1, "bit_len": 16}])
+    assert net.slaves[0].state.name == "PreOp" and "06020000h" in net.slaves[0].error
+    assert net.slaves[1].state.name == "Op"
+    net2 = _net(startup_sdos=[{"index": 0x2999, "value": 1, "bit_len": 16, "abort_on_error": False}])
+    assert net2.slaves[0].state.name == "Op"

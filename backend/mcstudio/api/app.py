@@ -14,7 +14,7 @@ from fastapi.staticfiles import StaticFiles
 from .. import __version__
 from . import errors
 from .models import WsHeartbeat, WsSubscribe
-from .routers import axes, controller, events, fb, health, live, project
+from .routers import axes, controller, ethercat, events, fb, health, live, project
 from .state import Studio
 
 API_PREFIX = "/api/v1"
@@ -46,7 +46,8 @@ def create_app(studio: Studio, *, static_dir: Path | None = None, cors_origins: 
         app.add_middleware(CORSMiddleware, allow_origins=cors_origins, allow_methods=["*"], allow_headers=["*"])
 
     api = APIRouter(prefix=API_PREFIX)
-    for r in (health.router, controller.router, project.router, axes.router, fb.router, events.router, live.router):
+    for r in (health.router, controller.router, project.router, axes.router, fb.router, events.router, ethercat.router,
+              live.router):
         api.include_router(r)
     app.include_router(api)
 

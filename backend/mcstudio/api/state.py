@@ -13,6 +13,7 @@ from ..controller.mc.axis import axis_variables
 from ..controller.mc.enums import AxisState
 from ..controller.mc.module import drv_status
 from ..controller.runner import Runner
+from ..fieldbus.library import DeviceLibrary
 from ..project.io import ProjectError, dump_project, load_project, save_project
 from ..project.models import Project
 from .models import AxisSummary, ControllerStatus, FBOut
@@ -38,6 +39,7 @@ class Studio:
     lock: threading.Lock = field(default_factory=threading.Lock)
 
     def __post_init__(self) -> None:
+        self.library: DeviceLibrary = self.runner.controller.library or DeviceLibrary(self.project_dir)
         self._dirty_memo: tuple[Project, str, bool] | None = None
         if not self.saved_text:
             self.saved_text = dump_project(self.runner.controller.project)
@@ -124,7 +126,7 @@ class Studio:
         """Replace the running controller with one built from `project` (cycle 0, like a download).
 
         Refused (409) while an axis moves: a download restarts the controller."""
-        controller = Controller(project)
+        controller = Controller(project, library=self.library)
 
         def swap(current: Controller) -> None:
             moving = [a.name for a in current.mc.axes if a.state in _MOVING]
@@ -174,8 +176,14 @@ class Studio:
 
     def open_project(self, name: str) -> Project:
         folder = self.resolve_project_name(name)
-        project = load_project(folder)
-        self.apply_project(project)
+        library = DeviceLibrary(folder)
+        project = load_project(folder, library)
+        previous, self.library = self.library, library
+        try:
+            self.apply_project(project)
+        except Exception:
+            self.library = previous
+            raise
         self.project_dir = folder
         self.saved_text = dump_project(project)
         return project

@@ -22,6 +22,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..drives.cia402 import SensorLayout
+from ..fieldbus.config import resolve_slaves
+from ..fieldbus.library import DeviceLibrary
 from ..fieldbus.network import Network
 from ..plant.ideal import Mechanics
 from ..project.models import AxisConfig, Project
@@ -33,11 +35,14 @@ from .mc.module import MotionModule
 from .mc.units import pulses_per_unit
 
 
-def sensor_layout(axes: list[AxisConfig]) -> SensorLayout:
+def sensor_layout(axes: list[AxisConfig | None]) -> SensorLayout:
     """Sensor positions of the simulated mechanism behind each slave, from command units to motor pulses (the
-    mechanism's frame: pulses = units × pulses-per-unit at the power-on coordinate system)."""
+    mechanism's frame: pulses = units × pulses-per-unit at the power-on coordinate system). None: a slave without
+    an axis (no sensors)."""
     layout = SensorLayout(len(axes))
     for k, a in enumerate(axes):
+        if a is None:
+            continue
         s = a.sensors
         ppu = pulses_per_unit(a.parameters)
         if s.PositiveLimit is not None:
@@ -54,10 +59,12 @@ def sensor_layout(axes: list[AxisConfig]) -> SensorLayout:
     return layout
 
 
-def mechanics(axes: list[AxisConfig]) -> Mechanics:
-    """The mechanism behind each slave's drive from the axes' servo-drive settings (torque control)."""
+def mechanics(axes: list[AxisConfig | None]) -> Mechanics:
+    """The mechanism behind each slave's drive from the axes' servo-drive settings (None: defaults)."""
     mech = Mechanics(len(axes))
     for k, a in enumerate(axes):
+        if a is None:
+            continue
         d = a.drive
         mech.pulses_per_rev[k] = float(a.parameters.UnitConversion.CmdPlsCountPerMotorRotation)
         mech.rated_torque[k] = d.RatedTorque
@@ -65,6 +72,11 @@ def mechanics(axes: list[AxisConfig]) -> Mechanics:
         mech.viscous[k] = d.ViscousFriction
         mech.load[k] = d.LoadTorque
         mech.cst[k] = d.CyclicTorqueMode
+        if hasattr(mech, "model"):
+            mech.model[k] = 1 if d.PositionLoop == "SecondOrder" else 0
+            mech.bandwidth_hz[k] = d.PositionLoopBandwidth
+            mech.damping[k] = d.PositionLoopDamping
+            mech.feedforward[k] = d.VelocityFeedForward / 100.0
     return mech
 
 
@@ -117,18 +129,19 @@ class Until:
 
 
 class Controller:
-    def __init__(self, project: Project, *, clock: Callable[[], float] = time.monotonic) -> None:
+    def __init__(self, project: Project, *, clock: Callable[[], float] = time.monotonic,
+                 library: DeviceLibrary | None = None) -> None:
         self.project = project
+        self.library = library
         self.period_s = project.controller.period_s
         self.clock = clock
         self.events = EventLog()
-        real = [
-            a for a in project.axes
-            if a.type in (_eMC_AXIS_TYPE._mcServo, _eMC_AXIS_TYPE._mcEncdr) and a.node_address is not None
-        ]
-        real.sort(key=lambda a: a.node_address or 0)
-        self.network = Network([a.node_address for a in real], [f"Node{a.node_address} ({a.name})" for a in real],  # type: ignore[misc]
-                               sensors=sensor_layout(real), period_s=self.period_s, mechanics=mechanics(real))
+        slaves = resolve_slaves(project, library)
+        axis_of = {a.node_address: a for a in project.axes
+                   if a.node_address is not None and a.type in (_eMC_AXIS_TYPE._mcServo, _eMC_AXIS_TYPE._mcEncdr)}
+        behind = [axis_of.get(s.config.node_address) for s in slaves]
+        self.network = Network(slaves, sensor_layout(behind), period_s=self.period_s, mechanics=mechanics(behind),
+                               auto_restart=project.ethercat.master.auto_restart_slaves, library=library)
         self.mc = MotionModule(project, period_s=self.period_s, events=self.events, network=self.network)
         self.cycle = 0
         self.program: dict[int, ProgramEntry] = {}
@@ -137,6 +150,7 @@ class Controller:
         self.events.add(cycle=0, time_s=0.0, source="controller", code="00000000", level="information",
                         message=f"project '{project.name}' loaded: {len(self.mc.axes)} axes, "
                         f"primary period {project.controller.primary_period_us} µs")
+        self._network_events()
 
     @property
     def time_s(self) -> float:
@@ -211,13 +225,22 @@ class Controller:
     def run_cycle(self) -> None:
         mc = self.mc
         mc.cycle = self.cycle
-        self.network.exchange()
+        net = self.network
+        net.exchange()
+        if net.pending_events:
+            self._network_events()
         mc.inputs()
         for entry in list(self.program.values()):
             entry.fb.call()
         mc.motion()
         mc.outputs()
         self.cycle += 1
+
+    def _network_events(self) -> None:
+        for level, code, message in self.network.pending_events:
+            self.events.add(cycle=self.cycle, time_s=self.time_s, source="EtherCAT master", code=code,
+                            level=level, message=message)  # type: ignore[arg-type]
+        self.network.pending_events.clear()
 
     def step(self, cycles: int = 1, until: Until | None = None, *, publish: bool = True) -> int:
         """Run `cycles` periods (stopping early once `until` holds). Returns the number of cycles run."""

@@ -1,21 +1,14 @@
-"""Mechanism behind the drives: an ideal position follower in CSP, a rigid inertia in CST.
+"""Mechanical data of the mechanism behind each drive, and its validation.
 
-* **CSP** (cyclic synchronous position): a drive in *Operation enabled* that receives a target position is at that
-  position by the end of the period (an ideal, infinitely stiff position loop). The torque it reports is the torque
-  that motion takes (inverse dynamics of the model below); the drive's torque limits do not hold the shaft back.
-* **CST** (cyclic synchronous torque): the shaft is one rigid inertia driven by the motor torque T,
-  ``J·dω/dt = T − b·ω − T_load`` (J total inertia at the motor shaft, b viscous friction, T_load a constant external
-  torque, e.g. gravity; positive acts in the negative direction). T is constant over a period (the drive's torque
-  command), so the model is integrated exactly, whatever the period. The drive limits T to its torque limits
-  (60E0h/60E1h) and, as its velocity limit (607Fh) function, to the torque that keeps |ω| at or below the limit.
-* A drive that is not enabled holds the shaft (no coasting), as the first version did.
-
-Positions are motor pulses (int64, plus a fractional part in CST); the interface advances all drives one period.
+The dynamics live in `plant/mechanism.py` (`Mechanism`): per drive either the *ideal* position follower of the first
+version (model 0: in CSP the shaft is at the target by the end of the period) or a *second-order* closed position loop
+(model 1), with a rigid inertia behind both (``J·dω/dt = T − b·ω − T_load``) for CST and for torque-limited motion.
+This module keeps the parameters (`Mechanics`, one row per drive, SI units at the motor shaft), their defaults and
+the ranges the second-order model accepts (`validate_mechanics`).
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -26,6 +19,18 @@ DEFAULT_RATED_TORQUE = 1.27  # N·m
 DEFAULT_INERTIA = 2.7e-4  # kg·m², rotor + load at the motor shaft
 DEFAULT_VISCOUS_FRICTION = 1.0e-4  # N·m per rad/s
 DEFAULT_LOAD_TORQUE = 0.0  # N·m
+# Second-order position loop (model 1)
+DEFAULT_BANDWIDTH_HZ = 50.0  # natural frequency fn of the closed position loop, ωn = 2π·fn
+DEFAULT_DAMPING = 0.7  # damping ratio ζ
+DEFAULT_FEEDFORWARD = 0.0  # velocity feed-forward fraction kff (0 … 1)
+
+MODEL_IDEAL = 0
+MODEL_SECOND_ORDER = 1
+
+# accepted ranges of the second-order model (checked by `validate_mechanics`)
+DAMPING_RANGE = (0.05, 5.0)
+FEEDFORWARD_RANGE = (0.0, 1.0)
+MAX_BANDWIDTH_PER_SAMPLE_RATE = 0.25  # fn ≤ 0.25 / period: at least four periods per oscillation
 
 
 def wrap32(x: np.ndarray) -> np.ndarray:
@@ -44,6 +49,10 @@ class Mechanics:
     viscous: np.ndarray = field(init=False)  # N·m/(rad/s)
     load: np.ndarray = field(init=False)  # N·m
     cst: np.ndarray = field(init=False)  # the drive supports cyclic synchronous torque mode
+    model: np.ndarray = field(init=False)  # int8: 0 ideal follower, 1 second-order position loop
+    bandwidth_hz: np.ndarray = field(init=False)  # model 1: natural frequency of the position loop [Hz]
+    damping: np.ndarray = field(init=False)  # model 1: damping ratio ζ
+    feedforward: np.ndarray = field(init=False)  # model 1: velocity feed-forward fraction (0 … 1)
 
     def __post_init__(self) -> None:
         n = self.n
@@ -53,88 +62,40 @@ class Mechanics:
         self.viscous = np.full(n, DEFAULT_VISCOUS_FRICTION)
         self.load = np.full(n, DEFAULT_LOAD_TORQUE)
         self.cst = np.ones(n, dtype=bool)
+        self.model = np.zeros(n, dtype=np.int8)
+        self.bandwidth_hz = np.full(n, DEFAULT_BANDWIDTH_HZ)
+        self.damping = np.full(n, DEFAULT_DAMPING)
+        self.feedforward = np.full(n, DEFAULT_FEEDFORWARD)
 
 
-class IdealPlant:
-    def __init__(self, n: int, mechanics: Mechanics | None = None, period_s: float = 0.001) -> None:
-        self.n = n
-        self.mech = mech = mechanics if mechanics is not None else Mechanics(n)
-        self.period_s = T = period_s
-        self.rad_per_pulse = 2.0 * math.pi / mech.pulses_per_rev
-        # exact solution of J·dω/dt = N − b·ω over one period with N constant:
-        #   ω1 = e·ω0 + g1·N/J,  Δθ = g1·ω0 + g2·N/J  with k = b/J, e = exp(−kT), g1 = (1 − e)/k, g2 = (T − g1)/k
-        k = mech.viscous / mech.inertia
-        kt = k * T
-        small = kt < 1e-6
-        ks = np.where(small, 1.0, k)
-        self._e = np.exp(-kt)
-        self._g1 = np.where(small, T * (1.0 - kt / 2.0), -np.expm1(-kt) / ks)
-        self._g2 = np.where(small, T * T / 2.0 * (1.0 - kt / 3.0), (T - self._g1) / ks)
-        # CSP: reported torque [0.1 % of rated] = A·ω1 − C·ω0 + L (ω in pulses/s): the constant torque that takes the
-        # shaft from ω0 to ω1 in one period
-        per_mille = 1000.0 / mech.rated_torque
-        self._a = mech.inertia / self._g1 * self.rad_per_pulse * per_mille
-        self._c = self._a * self._e
-        self._load_pm = mech.load * per_mille
-        self._inv_period = 1.0 / T
-        self._cst_before = False
-        self.velocity = np.zeros(n)  # shaft velocity [pulse/s] at the end of the period
-        self.frac = np.zeros(n)  # CST: continuous position = position + frac (|frac| ≤ 0.5 pulse)
-        self.torque = np.zeros(n)  # applied torque [0.1 % of rated]
-        self.limited = np.zeros(n, dtype=bool)  # the drive limited the torque (torque or velocity limit)
+def validate_mechanics(mech: Mechanics, period_s: float) -> list[str]:
+    """Problems of the mechanical data, one message per bad value (empty: usable).
 
-    def advance(self, position: np.ndarray, target32: np.ndarray, enabled: np.ndarray,
-                cst: np.ndarray | None = None) -> None:
-        """CSP: move enabled motors to their 32-bit targets (unwrapping into the 64-bit motor position). Drives in
-        CST (`cst`) are left to `advance_torque`."""
-        csp = enabled if cst is None else enabled & ~cst
-        delta = (target32.astype(np.int64) - wrap32(position).astype(np.int64) + 2**31) % 2**32 - 2**31
-        moved = np.where(csp, delta, 0)
-        position += moved
-        w1 = moved * self._inv_period
-        torque = np.where(csp, self._a * w1 - self._c * self.velocity + self._load_pm, 0.0)
-        if cst is None:
-            self.velocity = w1
-            self.torque = torque
-            if self._cst_before:  # leaving CST: no fraction, no limit
-                self._cst_before = False
-                self.frac[:] = 0.0
-                self.limited[:] = False
-        else:
-            self.velocity = np.where(cst, self.velocity, w1)
-            self.torque = np.where(cst, self.torque, torque)
-            self.frac[~cst] = 0.0
-            self.limited[~cst] = False
-            self._cst_before = True
+    Every drive needs pulses_per_rev > 0, rated_torque > 0, inertia > 0 and viscous ≥ 0 (finite). A drive with the
+    second-order model (model 1) also needs 0 < bandwidth_hz ≤ 0.25/period_s, 0.05 ≤ damping ≤ 5 and
+    0 ≤ feedforward ≤ 1; these are not checked for ideal drives (model 0), which do not use them.
+    """
+    out: list[str] = []
 
-    def advance_torque(self, idx: np.ndarray, position: np.ndarray, demand: np.ndarray, t_max: np.ndarray,
-                       t_min: np.ndarray, v_limit: np.ndarray) -> None:
-        """CST for the drives `idx` (after `advance` moved the others): torque `demand` [0.1 %] limited to
-        [t_min, t_max] and by the velocity limit `v_limit` [pulse/s]; the shaft follows the dynamics."""
-        m = self.mech
-        J, L = m.inertia[idx], m.load[idx]
-        rated = m.rated_torque[idx] / 1000.0  # N·m per 0.1 %
-        rpp = self.rad_per_pulse[idx]
-        e, g1, g2 = self._e[idx], self._g1[idx], self._g2[idx]
-        w0 = self.velocity[idx] * rpp  # rad/s
-        lo, hi = t_min * rated, t_max * rated
-        want = demand * rated
-        t = np.clip(want, lo, hi)
-        # velocity limit: the torque that ends the period exactly at ±limit, if the torque would pass it
-        w_lim = v_limit * rpp
-        w_free = e * w0 + g1 * (t - L) / J
-        over = w_free > w_lim
-        under = w_free < -w_lim
-        if over.any() or under.any():
-            cap = np.where(over, w_lim, -w_lim)
-            t = np.where(over | under, np.clip(J * (cap - e * w0) / g1 + L, lo, hi), t)
-        n_acc = (t - L) / J
-        w1 = e * w0 + g1 * n_acc
-        dtheta = g1 * w0 + g2 * n_acc
-        p = position[idx] + self.frac[idx] + dtheta / rpp
-        whole = np.rint(p)
-        position[idx] = whole.astype(np.int64)
-        self.frac[idx] = p - whole
-        self.velocity[idx] = w1 / rpp
-        self.torque[idx] = t / rated
-        self.limited[idx] = t != want
+    def bad(name: str, ok: np.ndarray, rule: str) -> None:
+        values = getattr(mech, name)
+        for i in np.flatnonzero(~ok):
+            out.append(f"drive {int(i)}: {name} = {values[i]!r} ({rule})")
+
+    with np.errstate(invalid="ignore"):
+        bad("pulses_per_rev", np.isfinite(mech.pulses_per_rev) & (mech.pulses_per_rev > 0), "must be > 0")
+        bad("rated_torque", np.isfinite(mech.rated_torque) & (mech.rated_torque > 0), "must be > 0")
+        bad("inertia", np.isfinite(mech.inertia) & (mech.inertia > 0), "must be > 0")
+        bad("viscous", np.isfinite(mech.viscous) & (mech.viscous >= 0), "must be ≥ 0")
+        bad("load", np.isfinite(mech.load), "must be finite")
+        bad("model", np.isin(mech.model, (MODEL_IDEAL, MODEL_SECOND_ORDER)), "0 ideal or 1 second order")
+        second = mech.model == MODEL_SECOND_ORDER
+        f_max = MAX_BANDWIDTH_PER_SAMPLE_RATE / period_s
+        bad("bandwidth_hz", ~second | ((mech.bandwidth_hz > 0) & (mech.bandwidth_hz <= f_max)),
+            f"0 < bandwidth ≤ {f_max:g} Hz = 0.25/period")
+        lo, hi = DAMPING_RANGE
+        bad("damping", ~second | ((mech.damping >= lo) & (mech.damping <= hi)), f"{lo} ≤ damping ≤ {hi}")
+        lo, hi = FEEDFORWARD_RANGE
+        bad("feedforward", ~second | ((mech.feedforward >= lo) & (mech.feedforward <= hi)),
+            f"{lo} ≤ feedforward ≤ {hi}")
+    return out

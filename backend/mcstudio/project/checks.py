@@ -11,6 +11,8 @@ from dataclasses import dataclass
 
 from ..controller.mc.enums import _eMC_AXIS_TYPE, _eMC_COUNT_MODE
 from ..controller.mc.units import POS_MAX_PULSES, fits_distance, fits_position, pulses_per_unit
+from ..fieldbus.config import check_network
+from ..fieldbus.library import DeviceLibrary
 from .models import AxisParameters, Project
 
 # ErrorParameterCode of the 573B range checks, by member path. Used by MC_WriteAxisParameter.
@@ -162,7 +164,7 @@ def check_axis_parameters(p: AxisParameters) -> list[tuple[int, str, str]]:
     return out
 
 
-def check_project(project: Project) -> list[Issue]:
+def check_project(project: Project, library: DeviceLibrary | None = None) -> list[Issue]:
     issues: list[Issue] = []
     names: dict[str, int] = {}
     numbers: dict[int, int] = {}
@@ -189,4 +191,10 @@ def check_project(project: Project) -> list[Issue]:
             nodes.setdefault(ax.node_address, i)
         for code, path, msg in check_axis_parameters(ax.parameters):
             issues.append(Issue(f"{base}.parameters.{path}", msg, f"573B/{code:04X}"))
+        d = ax.drive
+        if d.PositionLoop == "SecondOrder" and d.PositionLoopBandwidth > 0.25e6 / project.controller.primary_period_us:
+            issues.append(Issue(f"{base}.drive.PositionLoopBandwidth",
+                                f"{d.PositionLoopBandwidth:g} Hz is more than a quarter of the sampling frequency "
+                                f"({1e6 / project.controller.primary_period_us:g} Hz) of the primary period"))
+    issues.extend(Issue(path, msg) for path, msg in check_network(project, library))
     return issues

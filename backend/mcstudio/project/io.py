@@ -17,6 +17,7 @@ from typing import Any
 
 from pydantic import ValidationError
 
+from ..fieldbus.library import DeviceLibrary
 from .checks import Issue, check_project
 from .models import PROJECT_FILE, Project
 
@@ -59,7 +60,7 @@ def issues_from_validation_error(err: ValidationError, prefix: Sequence[Any] = (
     return issues
 
 
-def parse_project(data: Any) -> Project:
+def parse_project(data: Any, library: DeviceLibrary | None = None) -> Project:
     """Validate a decoded JSON document; raise ProjectError listing every invalid field."""
     if not isinstance(data, dict):
         raise ProjectError("the project document must be a JSON object", [Issue("(document)", "not an object")])
@@ -73,13 +74,13 @@ def parse_project(data: Any) -> Project:
         project = Project.model_validate(data)
     except ValidationError as err:
         raise ProjectError("the project document is invalid", issues_from_validation_error(err)) from None
-    issues = check_project(project)
+    issues = check_project(project, library)
     if issues:
         raise ProjectError("the project document is invalid", issues)
     return project
 
 
-def load_project(folder: str | os.PathLike[str]) -> Project:
+def load_project(folder: str | os.PathLike[str], library: DeviceLibrary | None = None) -> Project:
     folder = Path(folder)
     path = folder / PROJECT_FILE
     if not folder.is_dir():
@@ -94,7 +95,7 @@ def load_project(folder: str | os.PathLike[str]) -> Project:
     except json.JSONDecodeError as err:
         raise ProjectError(f"{path} is not valid JSON: {err.msg} at line {err.lineno}, column {err.colno}") from None
     try:
-        return parse_project(data)
+        return parse_project(data, library if library is not None else DeviceLibrary(folder))
     except ProjectError as err:
         raise ProjectError(f"{path}: {err.message}", err.issues) from None
 
@@ -114,15 +115,17 @@ def _fsync_dir(folder: Path) -> None:
         os.close(fd)
 
 
-def atomic_write(path: Path, text: str, *, keep_backup: bool = True) -> None:
-    """Write `text` to `path` atomically (temp file + fsync + rename), keeping the old file as `<path>.bak`."""
+def atomic_write(path: Path, text: str | bytes, *, keep_backup: bool = True) -> None:
+    """Write `text` (UTF-8) or bytes to `path` atomically (temp file + fsync + rename), keeping the old file as
+    `<path>.bak`."""
     folder = path.parent
     folder.mkdir(parents=True, exist_ok=True)
     fd, tmp_name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
     tmp = Path(tmp_name)
     try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
+        data = text.encode("utf-8") if isinstance(text, str) else text
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
             fh.flush()
             os.fsync(fh.fileno())
         if keep_backup and path.exists():

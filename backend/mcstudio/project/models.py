@@ -27,6 +27,7 @@ from ..controller.mc.enums import (
     _eMC_SWLMT_MODE,
     _eMC_UNITS,
 )
+from ..fieldbus.pdo import SlavePdoConfig
 from ..plant.ideal import DEFAULT_INERTIA, DEFAULT_LOAD_TORQUE, DEFAULT_RATED_TORQUE, DEFAULT_VISCOUS_FRICTION
 from .enumtypes import ManualEnum
 
@@ -207,6 +208,21 @@ class ServoDriveSettings(_Strict):
         True, description="The drive supports cyclic synchronous torque mode (CST); without it a change to CST is "
         "ignored by the drive and MC_TorqueControl ends with 7439 after 1 s"
     )
+    # The drive's position control (architecture.md "Mechanism"): Ideal = the shaft is at the target position at the
+    # end of each period (no following error); SecondOrder = a closed position loop with this bandwidth and damping,
+    # limited by the drive's torque limits, so Act.Pos lags Cmd.Pos as on a real machine.
+    PositionLoop: Literal["Ideal", "SecondOrder"] = Field(
+        "Ideal", description="Position control model of the drive in CSP: Ideal (no following error) or SecondOrder"
+    )
+    PositionLoopBandwidth: float = Field(
+        50.0, gt=0, le=2000.0, description="SecondOrder: natural frequency of the closed position loop [Hz]; at "
+        "most a quarter of the sampling frequency of the primary period"
+    )
+    PositionLoopDamping: float = Field(0.7, ge=0.05, le=5.0, description="SecondOrder: damping ratio ζ")
+    VelocityFeedForward: float = Field(
+        0.0, ge=0.0, le=100.0, description="SecondOrder: velocity feed-forward [%]; 100 % removes the following "
+        "error at constant speed"
+    )
 
 
 class SensorSettings(_Strict):
@@ -282,6 +298,54 @@ class ControllerSettings(_Strict):
         return self.primary_period_us * 1e-6
 
 
+class StartupSdo(_Strict):
+    """One line of a slave's start-up parameter list: an SDO write in the Pre-Op state (codesys-lc1200.md §5.4)."""
+
+    index: int = Field(ge=0x1000, le=0xFFFF, description="Object index")
+    subindex: int = Field(0, ge=0, le=255)
+    value: int = Field(ge=-(2**63), le=2**64 - 1, description="Value written")
+    bit_len: Literal[8, 16, 32, 64] = Field(32, description="Size of the write")
+    abort_on_error: bool = Field(True, description="A failed write stops the slave's start-up (it stays in Pre-Op)")
+    comment: str = Field("", max_length=200)
+
+
+class SlaveEmulation(_Strict):
+    """How the emulated wire differs from the configuration (commissioning drills); not part of a real project."""
+
+    connected: bool = Field(True, description="The slave is on the wire when the network starts")
+    wired_device: str | None = Field(
+        None, description="A different device found at this position (topology mismatch), by library id")
+    encoder_velocity: float = Field(
+        0.0, ge=-1e9, le=1e9, description="Encoder input slaves: speed of the mechanism turning the encoder [pulse/s]")
+
+
+class EtherCATSlaveConfig(_Strict):
+    node_address: int = Field(ge=1, le=65534, description="Node address (station address) of the slave")
+    name: str = Field("", max_length=63, description="Device name shown in the network view (default E001 …)")
+    device: str = Field("builtin:cia402-servo", description="Library id of the device description: "
+                        "'builtin:cia402-servo', 'builtin:encoder-input' or 'esi:<vendor>:<product>:<revision>'")
+    pdo: SlavePdoConfig | None = Field(None, description="PDO assignment and mapping; null = the device's default")
+    startup_sdos: list[StartupSdo] = Field(default_factory=list, max_length=256)
+    emulation: SlaveEmulation = Field(default_factory=SlaveEmulation)
+
+
+class EtherCATMasterConfig(_Strict):
+    """Master settings; the cycle time is the primary period (`controller.primary_period_us`)."""
+
+    dc_enabled: bool = Field(True, description="Distributed clocks: the slaves latch and apply data on SYNC0")
+    sync_offset_pct: int = Field(20, ge=0, le=80, description="SYNC0 shift relative to the primary period [%]")
+    auto_restart_slaves: bool = Field(
+        True, description="A slave that comes back after a drop-out is brought back to Op automatically (else "
+        "only POST /api/v1/ethercat/slaves/{address}/connect or a controller restart reconnects it)")
+
+
+class EtherCATConfig(_Strict):
+    master: EtherCATMasterConfig = Field(default_factory=EtherCATMasterConfig)
+    slaves: list[EtherCATSlaveConfig] = Field(
+        default_factory=list, max_length=512,
+        description="Configured slaves in wiring order; empty = one built-in device per servo/encoder axis")
+
+
 class Project(_Strict):
     """The project document: one JSON file in the project folder."""
 
@@ -291,6 +355,7 @@ class Project(_Strict):
     description: str = Field("", max_length=2000)
     controller: ControllerSettings = Field(default_factory=ControllerSettings)
     axes: list[AxisConfig] = Field(default_factory=list, max_length=256)
+    ethercat: EtherCATConfig = Field(default_factory=EtherCATConfig)
 
     def axis(self, name: str) -> AxisConfig | None:
         return next((a for a in self.axes if a.name == name), None)

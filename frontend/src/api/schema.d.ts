@@ -364,6 +364,155 @@ export interface paths {
         patch?: never;
         trace?: never;
     };
+    "/api/v1/ethercat": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        /** Master settings and slaves (ESM state, PDO assignment and mapping with offsets, device identity) */
+        get: operations["get_ethercat_api_v1_ethercat_get"];
+        /**
+         * Replace the network configuration (master settings and slaves)
+         * @description Validated like the project document; restarts the controller (409 while an axis moves).
+         */
+        put: operations["put_ethercat_api_v1_ethercat_put"];
+        post?: never;
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/ethercat/slaves/{address}/image": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        /** The slave's process image bytes as they last travelled on the wire */
+        get: operations["get_image_api_v1_ethercat_slaves__address__image_get"];
+        put?: never;
+        post?: never;
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/ethercat/slaves/{address}/pdo": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        get?: never;
+        /**
+         * Set a slave's PDO assignment and mapping
+         * @description Validated against the device description (Fixed, Mandatory, Exclude, object dictionary, entry counts, sync manager sizes); each problem is a 422 entry whose `loc` names the field. Applying restarts the controller like a download (409 while an axis moves); POST /project/save keeps it.
+         */
+        put: operations["put_pdo_api_v1_ethercat_slaves__address__pdo_put"];
+        post?: never;
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/ethercat/slaves/{address}/connect": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        get?: never;
+        put?: never;
+        /** Reconnect a slave (Omron's reconnect command): restart it towards Op if it is on the wire */
+        post: operations["post_connect_api_v1_ethercat_slaves__address__connect_post"];
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/devices": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        /** The device library (built-in and imported) */
+        get: operations["list_devices_api_v1_devices_get"];
+        put?: never;
+        post?: never;
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/devices/{device_id}": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        /** One device description */
+        get: operations["get_device_api_v1_devices__device_id__get"];
+        put?: never;
+        post?: never;
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/esi": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        get?: never;
+        put?: never;
+        /**
+         * Import an ESI XML file (multipart upload)
+         * @description Every device of the file joins the device library; the file is kept in the project's `esi/` folder (written atomically). The answer lists each device's identity and PDOs (its object dictionary: GET /devices/{id}). Malformed XML is a 422 naming the line.
+         */
+        post: operations["post_esi_api_v1_esi_post"];
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/faults": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        get?: never;
+        put?: never;
+        /**
+         * Fault injection for commissioning drills
+         * @description slave_disconnect / slave_reconnect (the cable), drive_fault / drive_fault_clear (a drive alarm with its 603Fh code), main_power_off / main_power_on (the drive's main circuit), encoder_velocity (turn an encoder input slave's encoder).
+         */
+        post: operations["post_fault_api_v1_faults_post"];
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
     "/api/v1/snapshot": {
         parameters: {
             query?: never;
@@ -671,6 +820,14 @@ export interface components {
             Cfg: components["schemas"]["AxisCfgVar"];
             Scale: components["schemas"]["AxisScaleVar"];
         };
+        /** Body_post_esi_api_v1_esi_post */
+        Body_post_esi_api_v1_esi_post: {
+            /**
+             * File
+             * @description ESI XML file
+             */
+            file: string;
+        };
         /** ControllerSettings */
         ControllerSettings: {
             /**
@@ -718,6 +875,97 @@ export interface components {
              */
             epoch: number;
         };
+        /** DeviceDescription */
+        DeviceDescription: {
+            /**
+             * Id
+             * @description Library key: 'builtin:…' or 'esi:<vendor>:<product>:<revision>'
+             */
+            id: string;
+            /** Name */
+            name: string;
+            /** Vendor Id */
+            vendor_id: number;
+            /**
+             * Vendor Name
+             * @default
+             */
+            vendor_name: string;
+            /** Product Code */
+            product_code: number;
+            /**
+             * Revision
+             * @default 0
+             */
+            revision: number;
+            /**
+             * Profile
+             * @description CoE device profile number (402 = drive), if the ESI gives one
+             */
+            profile?: number | null;
+            /**
+             * Group
+             * @default
+             */
+            group: string;
+            /**
+             * Kind
+             * @description What the emulator runs for it: a CiA402 servo drive, an encoder input, or nothing (the slave exchanges its process image, no object behind it)
+             * @default other
+             * @enum {string}
+             */
+            kind: "servo" | "encoder" | "other";
+            /**
+             * Mailbox
+             * @description Mailbox protocols: CoE, SoE, FoE, EoE …
+             */
+            mailbox?: string[];
+            /** Sync Managers */
+            sync_managers?: components["schemas"]["SyncManagerDescription"][];
+            /** Rx Pdos */
+            rx_pdos?: components["schemas"]["PdoDescription"][];
+            /** Tx Pdos */
+            tx_pdos?: components["schemas"]["PdoDescription"][];
+            /** Objects */
+            objects?: components["schemas"]["ObjectDescription"][];
+            /**
+             * Max Entries Per Pdo
+             * @description Most entries one mapping object takes (its subindex 0 range)
+             * @default 32
+             */
+            max_entries_per_pdo: number;
+            /**
+             * Source
+             * @description 'builtin' or the ESI file name
+             * @default builtin
+             */
+            source: string;
+        };
+        /** DeviceSummary */
+        DeviceSummary: {
+            /** Id */
+            id: string;
+            /** Name */
+            name: string;
+            /** Vendor Id */
+            vendor_id: number;
+            /** Vendor Name */
+            vendor_name: string;
+            /** Product Code */
+            product_code: number;
+            /** Revision */
+            revision: number;
+            /** Profile */
+            profile: number | null;
+            /** Kind */
+            kind: string;
+            /** Source */
+            source: string;
+            /** Rx Pdos */
+            rx_pdos: number;
+            /** Tx Pdos */
+            tx_pdos: number;
+        };
         /** ErrorInfo */
         ErrorInfo: {
             /**
@@ -739,6 +987,84 @@ export interface components {
             source: string;
             /** Ref */
             ref: string;
+        };
+        /**
+         * EsiFile
+         * @description What one ESI file contains.
+         */
+        EsiFile: {
+            vendor: components["schemas"]["VendorDescription"];
+            /** Devices */
+            devices: components["schemas"]["DeviceDescription"][];
+            /**
+             * Warnings
+             * @description What was skipped and why
+             */
+            warnings?: string[];
+        };
+        /** EtherCATConfig */
+        EtherCATConfig: {
+            master?: components["schemas"]["EtherCATMasterConfig"];
+            /**
+             * Slaves
+             * @description Configured slaves in wiring order; empty = one built-in device per servo/encoder axis
+             */
+            slaves?: components["schemas"]["EtherCATSlaveConfig"][];
+        };
+        /**
+         * EtherCATMasterConfig
+         * @description Master settings; the cycle time is the primary period (`controller.primary_period_us`).
+         */
+        EtherCATMasterConfig: {
+            /**
+             * Dc Enabled
+             * @description Distributed clocks: the slaves latch and apply data on SYNC0
+             * @default true
+             */
+            dc_enabled: boolean;
+            /**
+             * Sync Offset Pct
+             * @description SYNC0 shift relative to the primary period [%]
+             * @default 20
+             */
+            sync_offset_pct: number;
+            /**
+             * Auto Restart Slaves
+             * @description A slave that comes back after a drop-out is brought back to Op automatically (else only POST /api/v1/ethercat/slaves/{address}/connect or a controller restart reconnects it)
+             * @default true
+             */
+            auto_restart_slaves: boolean;
+        };
+        /** EtherCATOut */
+        EtherCATOut: {
+            master: components["schemas"]["MasterOut"];
+            /** Slaves */
+            slaves: components["schemas"]["SlaveOut"][];
+        };
+        /** EtherCATSlaveConfig */
+        EtherCATSlaveConfig: {
+            /**
+             * Node Address
+             * @description Node address (station address) of the slave
+             */
+            node_address: number;
+            /**
+             * Name
+             * @description Device name shown in the network view (default E001 …)
+             * @default
+             */
+            name: string;
+            /**
+             * Device
+             * @description Library id of the device description: 'builtin:cia402-servo', 'builtin:encoder-input' or 'esi:<vendor>:<product>:<revision>'
+             * @default builtin:cia402-servo
+             */
+            device: string;
+            /** @description PDO assignment and mapping; null = the device's default */
+            pdo?: components["schemas"]["SlavePdoConfig"] | null;
+            /** Startup Sdos */
+            startup_sdos?: components["schemas"]["StartupSdo"][];
+            emulation?: components["schemas"]["SlaveEmulation"];
         };
         /** EventOut */
         EventOut: {
@@ -861,6 +1187,49 @@ export interface components {
              * @default
              */
             notes: string;
+        };
+        /** FaultIn */
+        FaultIn: {
+            /**
+             * Kind
+             * @description What happens on the machine
+             * @enum {string}
+             */
+            kind: "slave_disconnect" | "slave_reconnect" | "drive_fault" | "drive_fault_clear" | "main_power_off" | "main_power_on" | "encoder_velocity";
+            /**
+             * Node Address
+             * @description The slave it happens to
+             */
+            node_address: number;
+            /**
+             * Code
+             * @description drive_fault: the drive's 603Fh error code
+             * @default 8976
+             */
+            code: number;
+            /**
+             * Persistent
+             * @description drive_fault: the cause stays until drive_fault_clear
+             * @default false
+             */
+            persistent: boolean;
+            /**
+             * Value
+             * @description encoder_velocity: pulses per second
+             * @default 0
+             */
+            value: number;
+        };
+        /** FaultOut */
+        FaultOut: {
+            /** Kind */
+            kind: string;
+            /** Node Address */
+            node_address: number;
+            /** Cycle */
+            cycle: number;
+            /** Slave State */
+            slave_state: string;
         };
         /** HTTPValidationError */
         HTTPValidationError: {
@@ -1088,6 +1457,23 @@ export interface components {
              */
             CompensationVel: number;
         };
+        /** ImageOut */
+        ImageOut: {
+            /** Node Address */
+            node_address: number;
+            /**
+             * Rx Hex
+             * @description RxPDO bytes (master → slave) as last sent, hex
+             */
+            rx_hex: string;
+            /**
+             * Tx Hex
+             * @description TxPDO bytes (slave → master) as last received, hex
+             */
+            tx_hex: string;
+            /** Cycle */
+            cycle: number;
+        };
         /**
          * LimitSettings
          * @description `_sAXIS_LIMIT_SETTINGS` — software limits and following error.
@@ -1161,6 +1547,52 @@ export interface components {
              */
             FollowingErrorWarningVal: number;
         };
+        /** MappedEntryOut */
+        MappedEntryOut: {
+            /** Index */
+            index: number;
+            /** Subindex */
+            subindex: number;
+            /** Bit Len */
+            bit_len: number;
+            /** Name */
+            name: string;
+            /** Data Type */
+            data_type: string;
+            /**
+             * Bit Offset
+             * @description Offset in the slave's process image of its direction [bit]
+             */
+            bit_offset: number;
+            /**
+             * Byte Offset
+             * @description Offset as bytes.bits, e.g. 2.0 or 4.3
+             */
+            byte_offset: number;
+            /**
+             * Emulated
+             * @description The emulated device reads/writes this object (else it travels as zeros)
+             */
+            emulated: boolean;
+        };
+        /** MasterOut */
+        MasterOut: {
+            /**
+             * Cycle Time Us
+             * @description The primary period
+             */
+            cycle_time_us: number;
+            settings: components["schemas"]["EtherCATMasterConfig"];
+            /** Slaves Configured */
+            slaves_configured: number;
+            /** Slaves In Op */
+            slaves_in_op: number;
+            /**
+             * Explicit
+             * @description The project lists its slaves (else one built-in device per axis)
+             */
+            explicit: boolean;
+        };
         /** ModeIn */
         ModeIn: {
             /**
@@ -1168,6 +1600,43 @@ export interface components {
              * @enum {string}
              */
             mode: "realtime" | "fast" | "paused";
+        };
+        /** ObjectDescription */
+        ObjectDescription: {
+            /** Index */
+            index: number;
+            /**
+             * Subindex
+             * @default 0
+             */
+            subindex: number;
+            /**
+             * Name
+             * @default
+             */
+            name: string;
+            /**
+             * Data Type
+             * @default
+             */
+            data_type: string;
+            /**
+             * Bit Len
+             * @default 0
+             */
+            bit_len: number;
+            /**
+             * Access
+             * @default
+             */
+            access: string;
+            /**
+             * Pdo Mapping
+             * @default
+             */
+            pdo_mapping: string;
+            /** Default */
+            default?: string | null;
         };
         /** OpenProjectIn */
         OpenProjectIn: {
@@ -1497,6 +1966,124 @@ export interface components {
              */
             HomeProximityInputLogicInversion: boolean;
         };
+        /** PdoDescription */
+        PdoDescription: {
+            /**
+             * Index
+             * @description PDO mapping object: 1600h–17FFh (Rx) or 1A00h–1BFFh (Tx)
+             */
+            index: number;
+            /**
+             * Name
+             * @default
+             */
+            name: string;
+            /**
+             * Fixed
+             * @description The entries cannot be changed
+             * @default false
+             */
+            fixed: boolean;
+            /**
+             * Mandatory
+             * @description Must be assigned
+             * @default false
+             */
+            mandatory: boolean;
+            /**
+             * Sm
+             * @description Sync manager the PDO is assigned to by default (None = not assigned)
+             */
+            sm?: number | null;
+            /**
+             * Excludes
+             * @description PDOs that cannot be assigned together with it
+             */
+            excludes?: number[];
+            /**
+             * Depend On Slot
+             * @description ESI DependOnSlot: the PDO belongs to a module slot
+             * @default false
+             */
+            depend_on_slot: boolean;
+            /** Entries */
+            entries?: components["schemas"]["PdoEntryDescription"][];
+            /**
+             * Esi Index
+             * @description The index the ESI file gives, when the importer had to move the PDO into the Rx/Tx range (SoE drives number their MDT/AT by IDN)
+             */
+            esi_index?: number | null;
+        };
+        /** PdoEntryConfig */
+        PdoEntryConfig: {
+            /**
+             * Index
+             * @description Object index; 0 = padding
+             */
+            index: number;
+            /**
+             * Subindex
+             * @default 0
+             */
+            subindex: number;
+            /** Bit Len */
+            bit_len: number;
+        };
+        /** PdoEntryDescription */
+        PdoEntryDescription: {
+            /**
+             * Index
+             * @description Object index; 0 = padding (a gap of bit_len bits)
+             */
+            index: number;
+            /**
+             * Subindex
+             * @default 0
+             */
+            subindex: number;
+            /** Bit Len */
+            bit_len: number;
+            /**
+             * Name
+             * @default
+             */
+            name: string;
+            /**
+             * Data Type
+             * @description ESI data type name (UINT, DINT, BOOL …); empty for padding
+             * @default
+             */
+            data_type: string;
+        };
+        /** PdoMappingConfig */
+        PdoMappingConfig: {
+            /**
+             * Index
+             * @description PDO mapping object (1600h–17FFh Rx, 1A00h–1BFFh Tx)
+             */
+            index: number;
+            /** Entries */
+            entries?: components["schemas"]["PdoEntryConfig"][];
+        };
+        /** PdoOut */
+        PdoOut: {
+            /** Index */
+            index: number;
+            /** Name */
+            name: string;
+            /** Fixed */
+            fixed: boolean;
+            /** Mandatory */
+            mandatory: boolean;
+            /** Excludes */
+            excludes: number[];
+            /** Assigned */
+            assigned: boolean;
+            /** Bit Size */
+            bit_size: number;
+            /** Entries */
+            entries: components["schemas"]["MappedEntryOut"][];
+        };
         /**
          * PositionCountSettings
          * @description `_sAXIS_POSITION_COUNT_SETTINGS` — linear or rotary (ring counter) mode.
@@ -1574,6 +2161,7 @@ export interface components {
             controller?: components["schemas"]["ControllerSettings"];
             /** Axes */
             axes?: components["schemas"]["AxisConfig-Output"][];
+            ethercat?: components["schemas"]["EtherCATConfig"];
         };
         /** ProjectInfo */
         ProjectInfo: {
@@ -1725,6 +2313,179 @@ export interface components {
              * @default true
              */
             CyclicTorqueMode: boolean;
+            /**
+             * Positionloop
+             * @description Position control model of the drive in CSP: Ideal (no following error) or SecondOrder
+             * @default Ideal
+             * @enum {string}
+             */
+            PositionLoop: "Ideal" | "SecondOrder";
+            /**
+             * Positionloopbandwidth
+             * @description SecondOrder: natural frequency of the closed position loop [Hz]; at most a quarter of the sampling frequency of the primary period
+             * @default 50
+             */
+            PositionLoopBandwidth: number;
+            /**
+             * Positionloopdamping
+             * @description SecondOrder: damping ratio ζ
+             * @default 0.7
+             */
+            PositionLoopDamping: number;
+            /**
+             * Velocityfeedforward
+             * @description SecondOrder: velocity feed-forward [%]; 100 % removes the following error at constant speed
+             * @default 0
+             */
+            VelocityFeedForward: number;
+        };
+        /**
+         * SlaveEmulation
+         * @description How the emulated wire differs from the configuration (commissioning drills); not part of a real project.
+         */
+        SlaveEmulation: {
+            /**
+             * Connected
+             * @description The slave is on the wire when the network starts
+             * @default true
+             */
+            connected: boolean;
+            /**
+             * Wired Device
+             * @description A different device found at this position (topology mismatch), by library id
+             */
+            wired_device?: string | null;
+            /**
+             * Encoder Velocity
+             * @description Encoder input slaves: speed of the mechanism turning the encoder [pulse/s]
+             * @default 0
+             */
+            encoder_velocity: number;
+        };
+        /** SlaveOut */
+        SlaveOut: {
+            /** Position */
+            position: number;
+            /** Node Address */
+            node_address: number;
+            /** Name */
+            name: string;
+            /** Device Id */
+            device_id: string;
+            /** Device Name */
+            device_name: string;
+            /** Vendor Id */
+            vendor_id: number;
+            /** Vendor Name */
+            vendor_name: string;
+            /** Product Code */
+            product_code: number;
+            /** Revision */
+            revision: number;
+            /** Profile */
+            profile: number | null;
+            /** Kind */
+            kind: string;
+            /** Axis */
+            axis: string | null;
+            /**
+             * State
+             * @enum {string}
+             */
+            state: "Init" | "PreOp" | "Boot" | "SafeOp" | "Op";
+            /** Wired */
+            wired: boolean;
+            /**
+             * Pd Ok
+             * @description Process data communication established (Omron _EC_PDSlavTbl)
+             */
+            pd_ok: boolean;
+            /** Error */
+            error: string;
+            /**
+             * Drive State
+             * @description CiA402 power drive system state (servo slaves)
+             */
+            drive_state?: string | null;
+            /**
+             * Drive Error Code
+             * @description 603Fh of the drive (servo slaves)
+             */
+            drive_error_code?: number | null;
+            /** Rx Bytes */
+            rx_bytes: number;
+            /** Tx Bytes */
+            tx_bytes: number;
+            /** Rx Assign */
+            rx_assign: number[];
+            /** Tx Assign */
+            tx_assign: number[];
+            /** Rx Pdos */
+            rx_pdos: components["schemas"]["PdoOut"][];
+            /** Tx Pdos */
+            tx_pdos: components["schemas"]["PdoOut"][];
+            /** Startup Log */
+            startup_log: string[];
+        };
+        /**
+         * SlavePdoConfig
+         * @description What a slave exchanges: the PDO assignment (1C12h/1C13h) and the content of the assigned PDOs.
+         */
+        SlavePdoConfig: {
+            /**
+             * Rx Assign
+             * @description 1C12h: RxPDOs, in order
+             */
+            rx_assign?: number[];
+            /**
+             * Tx Assign
+             * @description 1C13h: TxPDOs, in order
+             */
+            tx_assign?: number[];
+            /**
+             * Mappings
+             * @description Entries of the assigned PDOs (a PDO not listed has its description's)
+             */
+            mappings?: components["schemas"]["PdoMappingConfig"][];
+        };
+        /**
+         * StartupSdo
+         * @description One line of a slave's start-up parameter list: an SDO write in the Pre-Op state (codesys-lc1200.md §5.4).
+         */
+        StartupSdo: {
+            /**
+             * Index
+             * @description Object index
+             */
+            index: number;
+            /**
+             * Subindex
+             * @default 0
+             */
+            subindex: number;
+            /**
+             * Value
+             * @description Value written
+             */
+            value: number;
+            /**
+             * Bit Len
+             * @description Size of the write
+             * @default 32
+             * @enum {integer}
+             */
+            bit_len: 8 | 16 | 32 | 64;
+            /**
+             * Abort On Error
+             * @description A failed write stops the slave's start-up (it stays in Pre-Op)
+             * @default true
+             */
+            abort_on_error: boolean;
+            /**
+             * Comment
+             * @default
+             */
+            comment: string;
         };
         /** StepIn */
         StepIn: {
@@ -1781,6 +2542,32 @@ export interface components {
             stepped: number;
             /** Until Met */
             until_met?: boolean | null;
+        };
+        /** SyncManagerDescription */
+        SyncManagerDescription: {
+            /** Index */
+            index: number;
+            /**
+             * Type
+             * @default Unknown
+             * @enum {string}
+             */
+            type: "MBoxOut" | "MBoxIn" | "Outputs" | "Inputs" | "Unknown";
+            /** Start Address */
+            start_address?: number | null;
+            /** Default Size */
+            default_size?: number | null;
+            /** Min Size */
+            min_size?: number | null;
+            /** Max Size */
+            max_size?: number | null;
+            /** Control Byte */
+            control_byte?: number | null;
+            /**
+             * Enable
+             * @default true
+             */
+            enable: boolean;
         };
         /**
          * UnitConversionSettings
@@ -1931,6 +2718,16 @@ export interface components {
             enumerators?: {
                 [key: string]: unknown;
             }[] | null;
+        };
+        /** VendorDescription */
+        VendorDescription: {
+            /** Id */
+            id: number;
+            /**
+             * Name
+             * @default
+             */
+            name: string;
         };
         /** VizInfo */
         VizInfo: {
@@ -2786,6 +3583,318 @@ export interface operations {
                 content: {
                     "application/json": components["schemas"]["ErrorInfo"][];
                 };
+            };
+        };
+    };
+    get_ethercat_api_v1_ethercat_get: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        requestBody?: never;
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["EtherCATOut"];
+                };
+            };
+        };
+    };
+    put_ethercat_api_v1_ethercat_put: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        requestBody: {
+            content: {
+                "application/json": components["schemas"]["EtherCATConfig"];
+            };
+        };
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["EtherCATOut"];
+                };
+            };
+            /** @description Axes are moving */
+            409: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description Validation Error */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["HTTPValidationError"];
+                };
+            };
+        };
+    };
+    get_image_api_v1_ethercat_slaves__address__image_get: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path: {
+                address: number;
+            };
+            cookie?: never;
+        };
+        requestBody?: never;
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["ImageOut"];
+                };
+            };
+            /** @description Validation Error */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["HTTPValidationError"];
+                };
+            };
+        };
+    };
+    put_pdo_api_v1_ethercat_slaves__address__pdo_put: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path: {
+                address: number;
+            };
+            cookie?: never;
+        };
+        requestBody: {
+            content: {
+                "application/json": components["schemas"]["SlavePdoConfig"];
+            };
+        };
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["SlaveOut"];
+                };
+            };
+            /** @description No such slave */
+            404: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description Axes are moving */
+            409: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description Validation Error */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["HTTPValidationError"];
+                };
+            };
+        };
+    };
+    post_connect_api_v1_ethercat_slaves__address__connect_post: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path: {
+                address: number;
+            };
+            cookie?: never;
+        };
+        requestBody?: never;
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["SlaveOut"];
+                };
+            };
+            /** @description No such slave */
+            404: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description Not on the wire */
+            409: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description Validation Error */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["HTTPValidationError"];
+                };
+            };
+        };
+    };
+    list_devices_api_v1_devices_get: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        requestBody?: never;
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["DeviceSummary"][];
+                };
+            };
+        };
+    };
+    get_device_api_v1_devices__device_id__get: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path: {
+                device_id: string;
+            };
+            cookie?: never;
+        };
+        requestBody?: never;
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["DeviceDescription"];
+                };
+            };
+            /** @description Validation Error */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["HTTPValidationError"];
+                };
+            };
+        };
+    };
+    post_esi_api_v1_esi_post: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        requestBody: {
+            content: {
+                "multipart/form-data": components["schemas"]["Body_post_esi_api_v1_esi_post"];
+            };
+        };
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["EsiFile"];
+                };
+            };
+            /** @description File too large */
+            413: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description Not a valid ESI file */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+        };
+    };
+    post_fault_api_v1_faults_post: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        requestBody: {
+            content: {
+                "application/json": components["schemas"]["FaultIn"];
+            };
+        };
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["FaultOut"];
+                };
+            };
+            /** @description No such slave */
+            404: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description Not possible on that slave */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
             };
         };
     };

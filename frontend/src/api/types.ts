@@ -25,3 +25,23 @@ export type AxisConfigInput = S["AxisConfig-Input"];
 export type AxisDetail = S["AxisDetail"];
 export type FBType = S["FBType"];
 export type VarInfo = S["VarInfo"];
+
+// EtherCAT: network view, PDO configuration, device library, ESI import, fault injection
+export type EtherCATOut = S["EtherCATOut"];
+export type EtherCATMaster = S["MasterOut"];
+export type SlaveOut = S["SlaveOut"];
+export type EsmState = SlaveOut["state"];
+export type PdoOut = S["PdoOut"];
+export type MappedEntryOut = S["MappedEntryOut"];
+export type ImageOut = S["ImageOut"];
+export type SlavePdoConfig = S["SlavePdoConfig"];
+export type PdoMappingConfig = S["PdoMappingConfig"];
+export type PdoEntryConfig = S["PdoEntryConfig"];
+export type DeviceSummary = S["DeviceSummary"];
+export type DeviceDescription = S["DeviceDescription"];
+export type PdoDescription = S["PdoDescription"];
+export type ObjectDescription = S["ObjectDescription"];
+export type EsiFile = S["EsiFile"];
+export type FaultIn = S["FaultIn"];
+export type FaultKind = FaultIn["kind"];
+export type FaultOut = S["FaultOut"];

@@ -16,6 +16,7 @@ import {
   tabsStore,
 } from "../store/tabs";
 import { AxesTable } from "./axes/AxesTable";
+import { ethercatTab } from "./ethercat/tabs";
 import { AxisSettings } from "./settings/AxisSettings";
 import { AxisTestRun } from "./testrun/AxisTestRun";
 import { VizView } from "./viz/VizView";
@@ -79,7 +80,10 @@ function DiscardModal({ axis, onClose }: { axis: string | null; onClose: () => v
   );
 }
 
-/** The editor area: the axes overview, the 3D view, and per axis its test-run and settings tabs. */
+/**
+ * The editor area: the axes overview, the 3D view, per axis its test-run and settings tabs, and the EtherCAT tabs
+ * (network view, device library, PDO map per slave).
+ */
 export function Workspace() {
   const { open, active } = useStore(tabsStore, (s) => s);
   const { status, axes } = useAxisList();
@@ -132,6 +136,18 @@ export function Workspace() {
             3D
           </Tabs.Tab>
           {open.map((key) => {
+            const ec = ethercatTab(key);
+            if (ec) {
+              return (
+                <Tabs.Tab key={key} value={key} leftSection={ec.icon} data-testid={ec.testId}
+                  rightSection={<CloseTab label={ec.closeLabel} testId={ec.closeTestId} onClose={() => close(key)} />}
+                  onAuxClick={(e) => {
+                    if (e.button === 1) close(key);
+                  }}>
+                  {ec.title}
+                </Tabs.Tab>
+              );
+            }
             const runAxis = axisOfTab(key);
             const setAxis = settingsAxisOfTab(key);
             const axis = runAxis ?? setAxis ?? key;
@@ -169,6 +185,14 @@ export function Workspace() {
           <AxesTable />
         </Tabs.Panel>
         {open.map((key) => {
+          const ec = ethercatTab(key);
+          if (ec) {
+            return (
+              <Tabs.Panel key={key} value={key} style={{ overflow: "hidden" }}>
+                {ec.panel}
+              </Tabs.Panel>
+            );
+          }
           const runAxis = axisOfTab(key);
           const setAxis = settingsAxisOfTab(key);
           return (

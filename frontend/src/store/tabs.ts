@@ -1,6 +1,7 @@
 /**
  * Which editor tabs are open: the fixed "Axes" overview and "3D" tabs, then per axis a test-run tab (`axis:<name>`)
- * and an axis settings tab (`settings:<name>`), in opening order.
+ * and an axis settings tab (`settings:<name>`), the EtherCAT network view (`ethercat`), the device library
+ * (`devices`) and per slave a PDO map editor (`pdo:<node address>`), in opening order.
  */
 import { createStore } from "./createStore";
 
@@ -12,9 +13,14 @@ export const settingsTabKey = (axis: string): string => `settings:${axis}`;
 export const axisOfTab = (key: string): string | null => (key.startsWith("axis:") ? key.slice(5) : null);
 /** The axis of a settings tab (null for any other tab). */
 export const settingsAxisOfTab = (key: string): string | null => (key.startsWith("settings:") ? key.slice(9) : null);
+export const TAB_ETHERCAT = "ethercat";
+export const TAB_DEVICES = "devices";
+export const pdoTabKey = (node: number): string => `pdo:${node}`;
+/** The slave (node address) of a PDO map tab (null for any other tab). */
+export const pdoNodeOfTab = (key: string): number | null => (key.startsWith("pdo:") ? Number(key.slice(4)) : null);
 
 export interface TabsState {
-  /** Keys of the open axis tabs (test run and settings), in opening order. */
+  /** Keys of the open tabs besides "Axes" and "3D" (axis test run and settings, EtherCAT), in opening order. */
   open: string[];
   active: string;
 }
@@ -31,6 +37,18 @@ export function openAxisTab(axis: string): void {
 
 export function openSettingsTab(axis: string): void {
   openTab(settingsTabKey(axis));
+}
+
+export function openEthercatTab(): void {
+  openTab(TAB_ETHERCAT);
+}
+
+export function openDevicesTab(): void {
+  openTab(TAB_DEVICES);
+}
+
+export function openPdoTab(node: number): void {
+  openTab(pdoTabKey(node));
 }
 
 export function closeTab(key: string): void {

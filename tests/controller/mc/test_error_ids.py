@@ -109,6 +109,9 @@ def _block_mechanism(c: Controller, at_mm: float) -> None:
         return result
 
     plant.advance = blocked  # type: ignore[method-assign]
+    # the drive's own following-error window (6065h, not mapped: its start-up value) is opened, as a start-up SDO
+    # 6065h = FFFFFFFFh would: these tests are about the MC module's reaction, not the drive's 8611h
+    c.network.drive_rx["following_error_window"][0] = 0xFFFFFFFF
 
 
 def _retrigger(c: Controller, fb: FunctionBlock) -> None:

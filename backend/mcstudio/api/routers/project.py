@@ -31,7 +31,7 @@ def get_project(studio: Studio = Depends(get_studio)) -> Project:
 )
 def put_project(doc: dict[str, Any] = Body(..., description="Project document (project.json)"),
                 studio: Studio = Depends(get_studio)) -> Project:
-    project = parse_project(doc)
+    project = parse_project(doc, studio.library)
     studio.apply_project(project)
     return project
 

@@ -343,6 +343,8 @@ class Axis(AxisPlanning):
     # ------------------------------------------------------------------ starting instructions
     def check_start(self, kind: str = "move") -> tuple[str, int]:
         """Acceptance in the current state (A-3.4/A-3.8, `acceptance.py`): ("ok"|"abort"|"error", code)."""
+        if self.m.cfg_fault[self.i] and kind != "admin":
+            return "error", int(self.m.cfg_fault[self.i])  # 3460: the axis cannot operate (D29)
         if self.encoder and kind not in ("admin", "latch", "set_position"):  # A-3.7
             return "error", E.E_AXIS_TYPE
         v = verdict(kind, self.state)

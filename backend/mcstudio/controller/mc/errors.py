@@ -46,6 +46,10 @@ def hex4(code: int) -> str:
 
 # Named constants for the codes the MC layer raises (keeps call sites readable).
 E_PDO_MISSING = 0x3461
+E_PDO_REQUIRED = 0x3460
+E_SERVO_ALARM = 0x3002
+E_COMM_TIMEOUT = 0x3003
+E_CONNECTION = 0x600D
 E_VELOCITY = 0x5422
 E_ACCELERATION = 0x5423
 E_DECELERATION = 0x5424

@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ...drives.cia402 import (
+    CW_FAULT_RESET,
     DI_EXT1,
     DI_EXT2,
     DI_HOME_SWITCH,
@@ -25,8 +26,10 @@ from ...drives.cia402 import (
     TS1_STORED,
     TS2_STORED,
 )
+from ...fieldbus.network import ENCODER_REQUIRED, SERVO_REQUIRED
 from . import errors as E
 from .axis import Axis
+from .enums import AxisState
 from .jobs import JobKind, JobStatus
 from .profile import Planner, PlanningError, ProfileTable
 from .supervision import supervise
@@ -177,6 +180,26 @@ class MotionModule:
         self.pdo_objects: list[frozenset[int] | None] = [None] * n
         for row, slave in zip(rows, slaves, strict=True):
             self.pdo_objects[row] = network.mapped_objects(slave)  # type: ignore[union-attr]
+        # network and drive faults (decision D29)
+        self.pd_ok = np.ones(n, dtype=bool)  # process data communication of the axis's slave (virtual: TRUE)
+        self.drv_fault = np.zeros(n, dtype=bool)  # statusword bit 3 of the previous period
+        self.fault_reset_req = np.zeros(n, dtype=bool)  # MC_Reset: send CiA402 fault reset edges
+        self.cfg_fault = np.zeros(n, dtype=np.int64)  # configuration error that keeps the axis from operating
+        self._fault_resets = False
+        if network is not None:
+            self.pd_ok[self.bus_rows] = network.pd_ok[self.bus_slaves]
+            for row in rows:
+                a = self.axes[row]
+                mapped = self.pdo_objects[row] or frozenset()
+                need = ENCODER_REQUIRED if a.encoder else SERVO_REQUIRED
+                missing = [f"{o:04X}h" for o in need if o not in mapped]
+                if missing:
+                    self.cfg_fault[row] = E.E_PDO_REQUIRED
+                    a.error_code = E.E_PDO_REQUIRED
+                    a._set_state(AxisState.ErrorStop)
+                    self.log_error(E.E_PDO_REQUIRED, axis=a, source="EtherCAT",
+                                   detail=f"not in the PDO mapping of node {a.config.node_address}: "
+                                   + ", ".join(missing))
         self._mode_wait = np.zeros(len(rows), dtype=np.int64)  # periods the drive has not taken the mode sent
         self._mode_limit = max(1, round(1.0 / period_s))  # 7439 after 1 s
         self._prev_pos32 = np.zeros(len(rows), dtype=np.int64)
@@ -346,6 +369,28 @@ class MotionModule:
         axis.raise_error(E.E_MODE_SWITCH, source=source, stop="free",
                          detail=f"the drive reports mode {reported} 1 s after the request")
 
+    # ------------------------------------------------------------------ network and drive faults (D29)
+    def _watch_communication(self, rows: np.ndarray, ok: np.ndarray) -> None:
+        """A slave that leaves the process-data exchange: its axis error-stops with 3003 (the drive has lost its
+        commands); the other axes carry on (invt-ivc5.md §2.4, R4)."""
+        lost = self.pd_ok[rows] & ~ok
+        self.pd_ok[rows] = ok
+        for k in np.flatnonzero(lost):
+            a = self.axes[int(rows[k])]
+            a.raise_error(E.E_COMM_TIMEOUT, source="EtherCAT", stop="free",
+                          detail=f"node {a.config.node_address} left the cyclic exchange")
+
+    def _watch_drive_faults(self, rows: np.ndarray, fault: np.ndarray, sl: np.ndarray) -> None:
+        """A drive alarm (statusword bit 3 rising): the axis error-stops with 3002; 603Fh in the detail."""
+        new = fault & ~self.drv_fault[rows]
+        self.drv_fault[rows] = fault
+        for k in np.flatnonzero(new):
+            a = self.axes[int(rows[k])]
+            code = int(self.network.tx["error_code"][sl[k]])  # type: ignore[union-attr]
+            mapped = 0x603F in (self.pdo_objects[a.i] or ())
+            a.raise_error(E.E_SERVO_ALARM, source="drive", stop="free",
+                          detail=f"603Fh error code {code:04X}h" if mapped else "603Fh not mapped")
+
     # ------------------------------------------------------------------ stage 2: inputs
     def inputs(self) -> None:
         T = self.period_s
@@ -367,6 +412,13 @@ class MotionModule:
             self.din[rows] = din
             drv = _DRV_OF_SW[sw]
             oe = (drv & _SERVO_ON_BIT) != 0
+            ok = self.network.pd_ok[sl]  # type: ignore[union-attr]
+            if not ok.all() or not self.pd_ok[rows].all():
+                self._watch_communication(rows, ok)
+                oe &= ok
+            fault = (sw & 0x0008) != 0
+            if fault.any() or self.drv_fault[rows].any():
+                self._watch_drive_faults(rows, fault & ok, sl)
             mode = tx["modes_display"][sl]
             drv |= _MODE_BITS[mode.view(np.uint8)] * oe
             self.drv_mode[rows] = mode
@@ -546,6 +598,11 @@ class MotionModule:
             # servo ON: Shutdown → Switch on → Enable operation as the drive reports each state; OFF: Shutdown
             cw = _CW_FOR_STATE[sw] * self.servo_req[rows]
             cw[cw == 0] = CW_SHUTDOWN
+            if self._fault_resets:
+                # MC_Reset: CiA402 fault reset (rising edges of controlword bit 7, repeated every other period)
+                req = self.fault_reset_req[rows]
+                cw = np.where(req, CW_FAULT_RESET if self.cycle % 2 else 0, cw)
+                self._fault_resets = bool(self.fault_reset_req.any())
             rx["controlword"][sl] = cw
             if self.trq_active.any() or self._trq_out:
                 # torque control: CST with the command torque and the velocity limit (6071h, 607Fh)

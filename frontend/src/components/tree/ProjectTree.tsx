@@ -13,6 +13,7 @@ import {
   settingsTabKey,
   tabsStore,
 } from "../../store/tabs";
+import { EthercatTreeNode } from "./EthercatTreeNode";
 
 function StateBadge({ name }: { name: string }) {
   const vars = useAxisVars(name);
@@ -68,7 +69,10 @@ function AxisEntry({ axis, active, settingsActive }: { axis: AxisSummary; active
   );
 }
 
-/** The project tree: controller, axes (each opens its test-run tab; the gear opens its settings) and the 3D view. */
+/**
+ * The project tree: controller, axes (each opens its test-run tab; the gear opens its settings), EtherCAT (network
+ * view, a PDO map per slave), the device library and the 3D view.
+ */
 export function ProjectTree() {
   const project = useLive((s) => s.controller?.project ?? null);
   const period = useLive((s) => s.controller?.period_s ?? null);
@@ -136,6 +140,7 @@ export function ProjectTree() {
               />
             ))}
           </NavLink>
+          <EthercatTreeNode />
           <NavLink
             label={<Text size="xs" fw={600}>3D view</Text>}
             leftSection={<IconBox size={15} />}

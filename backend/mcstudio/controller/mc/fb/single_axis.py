@@ -109,6 +109,12 @@ class MC_Power(FunctionBlock):
             if axis.encoder:
                 self.fail(E.E_AXIS_TYPE, axis)
                 return
+            if axis.m.cfg_fault[axis.i]:
+                self.fail(int(axis.m.cfg_fault[axis.i]), axis, fault_axis=False)  # 3460 (D29)
+                return
+            if not axis.m.pd_ok[axis.i]:
+                self.fail(E.E_CONNECTION, axis, fault_axis=False)  # the slave is not in Op (D29)
+                return
             if not axis.virtual and not (int(axis.m.drv[axis.i]) & 0x4):
                 self.fail(E.E_MAIN_POWER_OFF, axis, fault_axis=True)
                 return
@@ -136,8 +142,45 @@ class MC_Reset(OneShotFB):
         spec="omron-axis-instructions.md MC_Reset (seed 000 line 12664)",
     )
 
+    _waiting: Axis | None = None
+    _deadline = 0
+
     def execute(self, axis: Axis) -> None:
+        m, i = axis.m, axis.i
+        if m.cfg_fault[i] or not m.pd_ok[i]:
+            # the cause persists (configuration error, slave not in process-data communication): like the axis
+            # errors caused by MC common errors, the reset is not performed (omron-axis-instructions.md MC_Reset)
+            self.done_next("Failure")
+            return
+        if m.drv_fault[i]:
+            # drive error first: CiA402 fault reset until the drive clears or the Drive Error Reset Monitoring
+            # Time elapses, then the axis error (MC_Reset functional rules)
+            ms = axis.params.OtherOperation.DriveErrorResetMonitoringTime
+            self._waiting = axis
+            self._deadline = m.cycle + max(1, round(ms * 1e-3 / m.period_s))
+            m.fault_reset_req[i] = True
+            m._fault_resets = True
+            return
         self.done_next("Done" if axis.reset() else "Failure")
+
+    def reexecute(self, axis: Axis) -> None:
+        """A new Execute edge while the drive reset runs: ignored, the reset in progress continues."""
+
+    def sync_job(self) -> None:
+        axis = self._waiting
+        if axis is not None:
+            m, i = axis.m, axis.i
+            if not m.drv_fault[i] or m.cycle >= self._deadline:
+                m.fault_reset_req[i] = False
+                self._waiting = None
+                self._finish("Failure" if m.drv_fault[i] else ("Done" if axis.reset() else "Failure"))
+            return
+        super().sync_job()
+
+    def on_delete(self) -> None:
+        if self._waiting is not None:
+            self._waiting.m.fault_reset_req[self._waiting.i] = False
+        super().on_delete()
 
 
 # --------------------------------------------------------------------------------------------------- MC_Stop
