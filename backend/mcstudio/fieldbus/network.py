@@ -83,6 +83,13 @@ class _Group:
     rx: Layout
     tx: Layout
     active: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool))
+    inputs_valid: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool))
+    all_active: bool = False
+    any_active: bool = False
+    all_valid: bool = False
+    any_valid: bool = False
+    slave_sel: Any = None  # `slaves` / `rows` as a slice when they are 0..n-1 in order (else the index arrays)
+    row_sel: Any = None
     rx_img: np.ndarray = field(default_factory=lambda: np.zeros((0, 0), dtype=np.uint8))
     tx_img: np.ndarray = field(default_factory=lambda: np.zeros((0, 0), dtype=np.uint8))
 
@@ -167,6 +174,8 @@ class Network:
         for (kind, _, _), members in by_sig.items():
             g = _Group(kind, np.array([s.position for s in members], dtype=np.intp),
                        np.array([s.row for s in members], dtype=np.intp), members[0].rx_layout, members[0].tx_layout)
+            g.slave_sel = _sel(g.slaves, len(self.slaves))
+            g.row_sel = _sel(g.rows, len(self._records(kind)[0]))
             g.rx_img = np.zeros((len(members), g.rx.nbytes), dtype=np.uint8)
             g.tx_img = np.zeros((len(members), g.tx.nbytes), dtype=np.uint8)
             groups.append(g)
@@ -183,8 +192,10 @@ class Network:
         self.pd_ok[:] = op
         for g in self._groups:
             g.active = op[g.slaves]
-            g.inputs_valid = (states[g.slaves] >= ESM.SafeOp) & np.array(  # type: ignore[attr-defined]
+            g.inputs_valid = (states[g.slaves] >= ESM.SafeOp) & np.array(
                 [self.slaves[int(p)].wired for p in g.slaves], dtype=bool)
+            g.all_active, g.any_active = bool(g.active.all()), bool(g.active.any())
+            g.all_valid, g.any_valid = bool(g.inputs_valid.all()), bool(g.inputs_valid.any())
         if self.servo_slaves.size:
             self._online_servo[:] = op[self.servo_slaves]
         if self.encoder_slaves.size:
@@ -325,15 +336,13 @@ class Network:
 
     def _outputs(self) -> None:
         for g in self._groups:
-            if not g.active.any():
+            if not g.any_active:
                 continue
             dev_rx, _ = self._records(g.kind)
-            if g.active.all():
-                sl = _sel(g.slaves, len(self.rx))
-                rows = _sel(g.rows, len(dev_rx))
-                img = pack(g.rx, self.rx, sl)
+            if g.all_active:
+                img = pack(g.rx, self.rx, g.slave_sel)
                 g.rx_img = img
-                unpack(g.rx, img, dev_rx, rows)
+                unpack(g.rx, img, dev_rx, g.row_sel)
             else:
                 a = g.active
                 img = pack(g.rx, self.rx, g.slaves[a])
@@ -348,14 +357,14 @@ class Network:
 
     def _inputs(self) -> None:
         for g in self._groups:
-            valid = g.inputs_valid  # type: ignore[attr-defined]
-            if not valid.any():
+            if not g.any_valid:
                 continue
+            valid = g.inputs_valid
             _, dev_tx = self._records(g.kind)
-            if valid.all():
-                img = pack(g.tx, dev_tx, _sel(g.rows, len(dev_tx)))
+            if g.all_valid:
+                img = pack(g.tx, dev_tx, g.row_sel)
                 g.tx_img = img
-                unpack(g.tx, img, self.tx, _sel(g.slaves, len(self.tx)))
+                unpack(g.tx, img, self.tx, g.slave_sel)
             else:
                 img = pack(g.tx, dev_tx, g.rows[valid])
                 g.tx_img[valid] = img

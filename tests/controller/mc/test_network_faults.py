@@ -187,3 +187,23 @@ def test_persistent_drive_alarm_mc_reset_fails_after_the_monitoring_time() -> No
     c.step(1)
     rs.set_inputs({"Execute": True})
     step_until(c, rs, "Done", limit=1000)
+
+
+def test_without_6060h_6061h_only_csp_instructions_run() -> None:
+    """§2.11 (CPU ≥ v1.10): 6060h/6061h not mapped → the drive stays in its start-up mode (CSP), positioning works,
+    MC_TorqueControl gives 3461; DrvStatus.CSP reads FALSE (6061h unmapped)."""
+    pdo = _without(0x6060)
+    for m in pdo.mappings:
+        m.entries = [e for e in m.entries if e.index != 0x6061]
+    c = Controller(_explicit(small_project(), pdo=pdo))
+    power_on(c, A0)
+    mv = c.fb("MC_MoveRelative", Axis=A0, Execute=True, Distance=2.0, Velocity=10.0, Acceleration=100.0,
+              Deceleration=100.0)
+    step_until(c, mv, "Done")
+    assert float(c.mc.act_pos[0]) == pytest.approx(2.0, abs=1e-5)
+    tc = c.fb("MC_TorqueControl", Axis=A0, Execute=True, Torque=10.0, TorqueRamp=100.0, Velocity=10.0)
+    c.step(2)
+    assert tc.Error and tc.ErrorID == 0x3461
+    from mcstudio.controller.mc.module import drv_status
+
+    assert not drv_status(int(c.mc.drv[0]))["CSP"] and int(c.network.drive_rx["modes_of_operation"][0]) == 8
