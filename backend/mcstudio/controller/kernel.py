@@ -146,6 +146,7 @@ class Controller:
         self.cycle = 0
         self.program: dict[int, ProgramEntry] = {}
         self._next_id = 1
+        self._view_cache: dict[int, tuple[dict[str, Any], dict[str, Any], FBView]] = {}
         self.snapshot: Snapshot = self._make_snapshot()
         self.events.add(cycle=0, time_s=0.0, source="controller", code="00000000", level="information",
                         message=f"project '{project.name}' loaded: {len(self.mc.axes)} axes, "
@@ -274,10 +275,21 @@ class Controller:
 
     # ------------------------------------------------------------------ snapshot
     def _make_snapshot(self) -> Snapshot:
-        fbs = {
-            fid: FBView(fid, e.fb.DEF.name, e.fb.inputs_json(), e.fb.outputs_json(), e.lease_s)
-            for fid, e in self.program.items()
-        }
+        # an instance's view is rebuilt only when its raw inputs or outputs changed since the last publication
+        cache = self._view_cache
+        fbs = {}
+        for fid, e in self.program.items():
+            fb = e.fb
+            hit = cache.get(fid)
+            if hit is not None and hit[0] == fb.inp and hit[1] == fb.out and hit[2].lease_s == e.lease_s:
+                fbs[fid] = hit[2]
+                continue
+            view = FBView(fid, fb.DEF.name, fb.inputs_json(), fb.outputs_json(), e.lease_s)
+            cache[fid] = (dict(fb.inp), dict(fb.out), view)
+            fbs[fid] = view
+        if len(cache) > len(fbs):
+            for fid in [k for k in cache if k not in fbs]:
+                del cache[fid]
         return Snapshot(self.cycle, self.time_s, self.period_s, self.project.name, self.mc.capture(), fbs,
                         self.events.last_seq)
 

@@ -45,7 +45,7 @@ class _EnableFB(FunctionBlock):
         o = self.out
         en = bool(self.inp["Enable"])
         changed = en != self._prev_enable
-        self._prev_enable = en
+        self.__dict__["_prev_enable"] = en  # (hot path: bypasses FunctionBlock.__setattr__)
         if o["Error"] and (self._error_released() or (self._common_error and changed)):
             o["Error"] = False
             o["ErrorID"] = 0

@@ -369,7 +369,7 @@ class ExecuteFB(FunctionBlock):
         o = self.out
         exe = bool(self.inp["Execute"])
         edge = exe and not self._prev_exe
-        self._prev_exe = exe
+        self.__dict__["_prev_exe"] = exe  # (hot path: bypasses FunctionBlock.__setattr__)
         if o["Error"] and self._error_released():
             o["Error"] = False
             o["ErrorID"] = 0

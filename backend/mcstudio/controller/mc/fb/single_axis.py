@@ -90,7 +90,7 @@ class MC_Power(FunctionBlock):
         o = self.out
         enable = bool(self.inp["Enable"])
         changed = enable != self._prev_enable
-        self._prev_enable = enable
+        self.__dict__["_prev_enable"] = enable  # (hot path: bypasses FunctionBlock.__setattr__)
         if o["Error"] and self._error_released():
             o["Error"] = False
             o["ErrorID"] = 0
