@@ -90,9 +90,9 @@ def check_network(project: Project, library: DeviceLibrary | None = None) -> lis
         elif kind is None:
             continue
         elif a.type == _eMC_AXIS_TYPE._mcServo and kind != "servo":
-            issues.append((path, f"a servo axis needs a CiA402 servo drive; node {a.node_address} is a {kind} "
-                                 "device"))
+            issues.append((path, f"a servo axis needs a CiA402 servo drive; node {a.node_address} is "
+                                 + ("an encoder input" if kind == "encoder" else "a device without a drive profile")))
         elif a.type == _eMC_AXIS_TYPE._mcEncdr and kind not in ("encoder", "servo"):
             issues.append((path, f"an encoder axis needs an encoder input or a servo drive; node {a.node_address} "
-                                 f"is a {kind} device"))
+                                 "is a device without a drive or encoder profile"))
     return issues

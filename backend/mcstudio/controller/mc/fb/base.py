@@ -312,10 +312,18 @@ class ExecuteFB(FunctionBlock):
     """Execute-type instruction with a motion job: Busy/Active/Done/CommandAborted/Error timing."""
 
     HAS_ACTIVE: ClassVar[bool] = True
+    _plain: ClassVar[bool] = True  # no per-call hooks (sync_job/after_call/call overridden): calls may be skipped
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        cls._plain = all(getattr(cls, name) is getattr(ExecuteFB, name) for name in ("sync_job", "after_call", "call"))
 
     def __init__(self, mc: MotionModule, fb_id: int, inputs: dict[str, Any] | None = None) -> None:
         super().__init__(mc, fb_id, inputs)
         self._prev_exe = False
+        self._steady = False
+        self._seen_status: JobStatus | None = None
+        self._seen_inv = False
         self._end_cycle = -1
         self.job: Job | None = None
         self.axis: Axis | None = None
@@ -368,8 +376,30 @@ class ExecuteFB(FunctionBlock):
     def call(self) -> None:
         o = self.out
         exe = bool(self.inp["Execute"])
+        d = self.__dict__
+        if exe is d["_prev_exe"] and self._plain and not o["Error"]:
+            # Execute unchanged and no per-call hooks: the call changes nothing while the instance is settled
+            # (finished or never started) or while its job reports what it reported at the last call
+            job = d["job"]
+            if job is None:
+                if d["_steady"]:
+                    return
+            elif job.status is d["_seen_status"] and job.in_velocity == d["_seen_inv"]:
+                return
         edge = exe and not self._prev_exe
-        self.__dict__["_prev_exe"] = exe  # (hot path: bypasses FunctionBlock.__setattr__)
+        d["_prev_exe"] = exe  # (hot path: bypasses FunctionBlock.__setattr__)
+        self._call(o, exe, edge)
+        job = d["job"]
+        if job is not None:
+            d["_seen_status"], d["_seen_inv"] = job.status, job.in_velocity
+            d["_steady"] = False
+        else:
+            d["_seen_status"] = None
+            # settled: no Busy, no error to release, completion flags held (Execute TRUE) or cleared
+            d["_steady"] = (not o["Busy"] and not o["Error"]
+                            and (exe or not (o.get("Done") or o.get("CommandAborted") or o.get("Failure"))))
+
+    def _call(self, o: dict[str, Any], exe: bool, edge: bool) -> None:
         if o["Error"] and self._error_released():
             o["Error"] = False
             o["ErrorID"] = 0

@@ -85,12 +85,25 @@ class MC_Power(FunctionBlock):
     def __init__(self, mc: Any, fb_id: int, inputs: dict[str, Any] | None = None) -> None:
         super().__init__(mc, fb_id, inputs)
         self._prev_enable = False
+        self._fast: tuple[Axis, str] | None = None
 
     def call(self) -> None:
         o = self.out
         enable = bool(self.inp["Enable"])
+        d = self.__dict__
+        fast = d["_fast"]
+        if fast is not None and enable is d["_prev_enable"] and not o["Error"]:
+            # steady state: same axis, same Enable, this instance owns the axis and the request is already made —
+            # the full path below would only refresh Busy and Status
+            axis, name = fast
+            if (self.inp["Axis"] == name and axis.used and axis.power_owner == self.id
+                    and enable == axis.servo_request):
+                o["Busy"] = enable
+                o["Status"] = bool(axis.m.servo_on[axis.i])
+                return
+        d["_fast"] = None
         changed = enable != self._prev_enable
-        self.__dict__["_prev_enable"] = enable  # (hot path: bypasses FunctionBlock.__setattr__)
+        d["_prev_enable"] = enable  # (hot path: bypasses FunctionBlock.__setattr__)
         if o["Error"] and self._error_released():
             o["Error"] = False
             o["ErrorID"] = 0
@@ -121,6 +134,7 @@ class MC_Power(FunctionBlock):
         axis.power(self.id, enable, changed)
         o["Busy"] = enable
         o["Status"] = axis.servo_on
+        d["_fast"] = (axis, self.inp["Axis"])
 
 
 # --------------------------------------------------------------------------------------------------- MC_Reset
