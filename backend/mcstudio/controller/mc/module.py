@@ -176,6 +176,12 @@ class MotionModule:
         self.virtual_rows = np.array([a.i for a in self.axes if a.i not in set(rows)], dtype=np.intp)
         self.on_bus = np.zeros(n, dtype=bool)
         self.on_bus[self.bus_rows] = True
+        # the common layout — every axis on the bus, axis i on slave i — is indexed with slices (views, no copies)
+        self._rows_sel: Any = self.bus_rows
+        self._sl_sel: Any = self.bus_slaves
+        if network is not None and len(rows) == n and rows == list(range(n)) and slaves == list(range(len(slaves))) \
+                and len(network.slaves) == n:
+            self._rows_sel = self._sl_sel = slice(None)
         # objects in the PDO mapping of each axis's slave (None: no slave — virtual axes)
         self.pdo_objects: list[frozenset[int] | None] = [None] * n
         for row, slave in zip(rows, slaves, strict=True):
@@ -399,8 +405,8 @@ class MotionModule:
             self.prev_act_pos[:] = self.act_pos  # Cmd.Pos in torque control: Act.Pos of one period earlier
         if self.bus_rows.size:
             tx = self.network.tx  # type: ignore[union-attr]
-            rows, sl = self.bus_rows, self.bus_slaves
-            sw = tx["statusword"][sl]
+            rows, sl = self._rows_sel, self._sl_sel
+            sw = tx["statusword"][sl].copy()
             pos32 = tx["position_actual"][sl].astype(np.int64)
             delta = (pos32 - self._prev_pos32 + 2**31) % 2**32 - 2**31
             self._prev_pos32 = pos32
@@ -414,12 +420,12 @@ class MotionModule:
             oe = (drv & _SERVO_ON_BIT) != 0
             ok = self.network.pd_ok[sl]  # type: ignore[union-attr]
             if not ok.all() or not self.pd_ok[rows].all():
-                self._watch_communication(rows, ok)
+                self._watch_communication(self.bus_rows, ok)
                 oe &= ok
             fault = (sw & 0x0008) != 0
             if fault.any() or self.drv_fault[rows].any():
-                self._watch_drive_faults(rows, fault & ok, sl)
-            mode = tx["modes_display"][sl]
+                self._watch_drive_faults(self.bus_rows, fault & ok, self.bus_slaves)
+            mode = tx["modes_display"][sl].copy()
             drv |= _MODE_BITS[mode.view(np.uint8)] * oe
             self.drv_mode[rows] = mode
             self.act_trq[rows] = tx["torque_actual"][sl] / 10.0  # 0.1 % units
@@ -430,7 +436,7 @@ class MotionModule:
                 self._mode_check = bool(pending.any()) or self._trq_out
                 for k in np.flatnonzero(self._mode_wait >= self._mode_limit):
                     self._mode_wait[k] = 0
-                    self._mode_switch_failed(int(rows[k]), int(mode[k]))
+                    self._mode_switch_failed(int(self.bus_rows[k]), int(mode[k]))
             drv |= ((din & DI_POSITIVE_LIMIT) != 0) * np.uint32(_B["P_OT"])
             drv |= ((din & DI_NEGATIVE_LIMIT) != 0) * np.uint32(_B["N_OT"])
             drv |= ((din & DI_HOME_SWITCH) != 0) * np.uint32(_B["HomeSw"])
@@ -591,7 +597,7 @@ class MotionModule:
     def outputs(self) -> None:
         if self.bus_rows.size:
             rx = self.network.rx  # type: ignore[union-attr]
-            rows, sl = self.bus_rows, self.bus_slaves
+            rows, sl = self._rows_sel, self._sl_sel
             count = np.rint((self.cmd_pos[rows] - self.pos_offset[rows]) * self.ppu[rows]).astype(np.int64)
             rx["target_position"][sl] = count.astype(np.int32)
             sw = self.network.tx["statusword"][sl] & 0x6F  # type: ignore[union-attr]
