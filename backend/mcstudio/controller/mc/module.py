@@ -192,6 +192,7 @@ class MotionModule:
         self.fault_reset_req = np.zeros(n, dtype=bool)  # MC_Reset: send CiA402 fault reset edges
         self.cfg_fault = np.zeros(n, dtype=np.int64)  # configuration error that keeps the axis from operating
         self._fault_resets = False
+        self.obs_set: dict[int, np.ndarray] = {}  # supervision: where each observation check set its observation
         if network is not None:
             self.pd_ok[self.bus_rows] = network.pd_ok[self.bus_slaves]
             for row in rows:

@@ -72,11 +72,22 @@ def supervise(m: MotionModule) -> None:
 
 
 def _observe(m: MotionModule, code: int, active: np.ndarray, scope: np.ndarray) -> None:
-    for i in np.flatnonzero(active):
-        m.axes[i].set_observation(code, True)
-    for a in m.axes:
-        if code in a.observations and not active[a.i] and scope[a.i]:
-            a.set_observation(code, False)
+    """Set the observation where `active`, clear it where it was set by this check and `scope` holds. `m.obs_set`
+    remembers where this check set it, so a period without warnings costs two vector operations, no axis loop."""
+    flags = m.obs_set.get(code)
+    if flags is None:
+        flags = m.obs_set[code] = np.zeros(m.n, dtype=bool)
+    if active.any():
+        for i in np.flatnonzero(active):
+            m.axes[i].set_observation(code, True)
+        flags |= active
+    gone = flags & ~active & scope
+    if gone.any():
+        for i in np.flatnonzero(gone):
+            a = m.axes[i]
+            if code in a.observations:
+                a.set_observation(code, False)
+        flags &= ~gone
 
 
 def _software_limits(m: MotionModule, sw: np.ndarray, T: float) -> None:
