@@ -145,6 +145,7 @@ class Controller:
         self.mc = MotionModule(project, period_s=self.period_s, events=self.events, network=self.network)
         self.cycle = 0
         self.program: dict[int, ProgramEntry] = {}
+        self._calls: list[Callable[[], None]] | None = None
         self._next_id = 1
         self._view_cache: dict[int, tuple[dict[str, Any], dict[str, Any], FBView]] = {}
         self.snapshot: Snapshot = self._make_snapshot()
@@ -172,6 +173,7 @@ class Controller:
         if lease_s is not None:
             entry.lease_deadline = self.clock() + lease_s
         self.program[fb.id] = entry
+        self._calls = None
         return fb
 
     def _check_inouts(self, cls: type[FunctionBlock], inputs: dict[str, Any]) -> None:
@@ -202,6 +204,7 @@ class Controller:
 
     def delete_fb(self, fb_id: int) -> None:
         entry = self.program.pop(fb_id, None)
+        self._calls = None
         if entry is None:
             raise KernelError("id", f"no function-block instance {fb_id}", status=404)
         entry.fb.on_delete()
@@ -231,8 +234,11 @@ class Controller:
         if net.pending_events:
             self._network_events()
         mc.inputs()
-        for entry in list(self.program.values()):
-            entry.fb.call()
+        calls = self._calls
+        if calls is None:  # the program changed: the instances' call methods, in creation order
+            calls = self._calls = [e.fb.call for e in self.program.values()]
+        for call in calls:
+            call()
         mc.motion()
         mc.outputs()
         self.cycle += 1
