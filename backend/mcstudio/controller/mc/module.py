@@ -257,7 +257,7 @@ class MotionModule:
         self.cmd_pos[i] += delta
         self.prev_cmd_pos[i] += delta
         self.act_pos[i] += delta
-        self.profiles.p[i] += delta
+        self.profiles.shift(i, delta)
 
     def reset_following_error(self, i: int) -> None:
         """Command := actual (immediate stop with following-error reset)."""
@@ -504,14 +504,16 @@ class MotionModule:
         if self.watchers:
             for watcher in list(self.watchers.values()):
                 watcher.watch()
-        active = self.profiles.active
-        if active.any():
-            idx = np.flatnonzero(active)
-            pos, vel, acc, fin = self.profiles.evaluate(cycle, T, idx)
-            self.cmd_pos[idx] = pos
-            self.prof_vel[idx] = vel
-            self.prof_acc[idx] = acc
-            report = idx[fin & self.notify[idx]]
+        profiles = self.profiles
+        if profiles.n_active:
+            active = profiles.active
+            pos, vel, acc, fin = profiles.evaluate(cycle, T)
+            np.copyto(self.cmd_pos, pos, where=active)
+            np.copyto(self.prof_vel, vel, where=active)
+            np.copyto(self.prof_acc, acc, where=active)
+            fin &= self.notify
+            fin &= active
+            report = np.flatnonzero(fin) if np.count_nonzero(fin) else ()
             for i in report:
                 axis = self.axes[i]
                 job = axis.current

@@ -229,7 +229,12 @@ def concat(first: Segments, second: Segments) -> Segments:
 
 
 class ProfileTable:
-    """Segment tables of all axes in arrays of shape (n_axes, MAX_SEGMENTS), evaluated together each period."""
+    """Segment tables of all axes in arrays of shape (n_axes, MAX_SEGMENTS), evaluated together each period.
+
+    The segment an axis is in is cached with its polynomial coefficients in 1-D arrays (`c_*`), so a period costs a
+    dozen vector operations over all axes; the table is searched only for the axes that crossed a segment start
+    (`next_t`) in that period.
+    """
 
     def __init__(self, n: int) -> None:
         self.n = n
@@ -241,6 +246,28 @@ class ProfileTable:
         self.duration = np.zeros(n)
         self.start_cycle = np.zeros(n, dtype=np.int64)
         self.active = np.zeros(n, dtype=bool)
+        self.n_active = 0  # count of `active` (kept with it: no reduction per period)
+        # the current segment of each axis: start time, coefficients p + τ(v + τ(a/2 + τ·j/6)), next start
+        self.seg = np.zeros(n, dtype=np.intp)
+        self.c_t0 = np.zeros(n)
+        self.c_p = np.zeros(n)
+        self.c_v = np.zeros(n)
+        self.c_a = np.zeros(n)
+        self.c_j = np.zeros(n)
+        self.c_a2 = np.zeros(n)
+        self.c_j2 = np.zeros(n)
+        self.c_j6 = np.zeros(n)
+        self.next_t = np.full(n, np.inf)
+        # work arrays of `evaluate` (no allocation per period)
+        self._k = np.zeros(n, dtype=np.int64)
+        self._t = np.zeros(n)
+        self._tau = np.zeros(n)
+        self._w = np.zeros(n)
+        self.pos = np.zeros(n)
+        self.vel = np.zeros(n)
+        self.acc = np.zeros(n)
+        self.finished = np.zeros(n, dtype=bool)
+        self._cross = np.zeros(n, dtype=bool)
 
     def load(self, i: int, seg: Segments, start_cycle: int) -> None:
         m = len(seg.t)
@@ -254,28 +281,62 @@ class ProfileTable:
         self.j[i, :m] = seg.j
         self.duration[i] = seg.duration
         self.start_cycle[i] = start_cycle
-        self.active[i] = True
+        if not self.active[i]:
+            self.active[i] = True
+            self.n_active += 1
+        self._enter(i, 0)
+
+    def _enter(self, i: int, k: int) -> None:
+        """Axis i is in segment k."""
+        self.seg[i] = k
+        self.c_t0[i] = self.t[i, k]
+        self.c_p[i] = self.p[i, k]
+        self.c_v[i] = v = self.v[i, k]
+        self.c_a[i] = a = self.a[i, k]
+        self.c_j[i] = j = self.j[i, k]
+        self.c_a2[i] = a * 0.5
+        self.c_j2[i] = j * 0.5
+        self.c_j6[i] = j * (1.0 / 6.0)
+        self.next_t[i] = self.t[i, k + 1] if k + 1 < MAX_SEGMENTS else np.inf
+
+    def shift(self, i: int, delta: float) -> None:
+        """Move axis i's profile by `delta` (a coordinate system shift)."""
+        self.p[i] += delta
+        self.c_p[i] += delta
 
     def clear(self, i: int) -> None:
-        self.active[i] = False
+        if self.active[i]:
+            self.active[i] = False
+            self.n_active -= 1
 
-    def evaluate(self, cycle: int, period_s: float, idx: np.ndarray) -> tuple[np.ndarray, ...]:
-        """Position, velocity, acceleration and 'finished' flags of the axes in `idx` at the end of `cycle`.
+    def evaluate(self, cycle: int, period_s: float) -> tuple[np.ndarray, ...]:
+        """Position, velocity, acceleration and 'finished' flags of every axis at the end of `cycle` (meaningful
+        where `active`; the arrays are reused by the next call).
 
         A profile loaded at cycle c0 has advanced one period at the end of c0 (the instruction's first command value
         appears in the period in which it was accepted; its Active output follows one period later).
         """
-        t = (cycle - self.start_cycle[idx] + 1) * period_s
-        ts = self.t[idx]
-        k = np.count_nonzero(ts <= t[:, None], axis=1) - 1
-        np.maximum(k, 0, out=k)
-        tau = t - self.t[idx, k]
-        j = self.j[idx, k]
-        a = self.a[idx, k]
-        v = self.v[idx, k]
-        p = self.p[idx, k]
-        pos = p + tau * (v + tau * (a * 0.5 + tau * j * (1.0 / 6.0)))
-        vel = v + tau * (a + tau * j * 0.5)
-        acc = a + tau * j
-        finished = t >= self.duration[idx]
-        return pos, vel, acc, finished
+        k, t, tau, w = self._k, self._t, self._tau, self._w
+        np.subtract(cycle + 1, self.start_cycle, out=k)
+        np.multiply(k, period_s, out=t)
+        cross = np.greater_equal(t, self.next_t, out=self._cross)
+        if np.count_nonzero(cross):
+            for i in np.flatnonzero(cross):
+                self._enter(i, max(int(np.searchsorted(self.t[i], t[i], side="right")) - 1, 0))
+        np.subtract(t, self.c_t0, out=tau)
+        # position p + τ(v + τ(a/2 + τ·j/6)), velocity v + τ(a + τ·j/2), acceleration a + τ·j
+        pos, vel, acc = self.pos, self.vel, self.acc
+        np.multiply(tau, self.c_j6, out=w)
+        w += self.c_a2
+        w *= tau
+        w += self.c_v
+        w *= tau
+        np.add(w, self.c_p, out=pos)
+        np.multiply(tau, self.c_j2, out=w)
+        w += self.c_a
+        w *= tau
+        np.add(w, self.c_v, out=vel)
+        np.multiply(tau, self.c_j, out=acc)
+        acc += self.c_a
+        np.greater_equal(t, self.duration, out=self.finished)
+        return pos, vel, acc, self.finished
