@@ -32,7 +32,7 @@ from .axis import Axis
 from .enums import AxisState
 from .jobs import JobKind, JobStatus
 from .profile import Planner, PlanningError, ProfileTable
-from .supervision import supervise
+from .supervision import Supervision
 
 if TYPE_CHECKING:
     from ...fieldbus.network import Network
@@ -161,6 +161,7 @@ class MotionModule:
         self._trq_left = np.full(n, -1, dtype=np.int64)  # period in which torque control last ended
         self.drv_mode = np.full(n, MODE_CSP, dtype=np.int8)  # 6061h modes of operation display
         self.prev_act_pos = np.zeros(n)  # Act.Pos of the previous period (Cmd.Pos during torque control)
+        self.sup_params_version = 0  # supervision parameters changed: the Supervision recompiles its thresholds
         for a in self.axes:
             self.refresh_params(a)
         # bus mapping: axes with a slave on the network
@@ -192,6 +193,7 @@ class MotionModule:
         self.fault_reset_req = np.zeros(n, dtype=bool)  # MC_Reset: send CiA402 fault reset edges
         self.cfg_fault = np.zeros(n, dtype=np.int64)  # configuration error that keeps the axis from operating
         self._fault_resets = False
+        self.supervise = Supervision(self)
         self.obs_set: dict[int, np.ndarray] = {}  # supervision: where each observation check set its observation
         if network is not None:
             self.pd_ok[self.bus_rows] = network.pd_ok[self.bus_slaves]
@@ -228,6 +230,7 @@ class MotionModule:
         """Copy the parameters the period checks into the supervision arrays."""
         i, p = axis.i, axis.params
         op, lim = p.Operation, p.Limit
+        self.sup_params_version += 1
         self.sw_mode[i] = int(lim.SwLimitMode)
         self.posi_sw[i] = lim.PosiSwLimit
         self.nega_sw[i] = lim.NegaSwLimit
@@ -537,7 +540,7 @@ class MotionModule:
         moving = vel != 0.0
         if moving.any():
             self.last_dir[moving] = np.where(vel[moving] > 0, 1, -1)
-        supervise(self)
+        self.supervise()
         if self._scheduled:
             # started during this stage (a buffered instruction taking over, an error stop): from the next period
             scheduled, self._scheduled = self._scheduled, {}

@@ -25,69 +25,146 @@ from .enums import AxisState
 if TYPE_CHECKING:
     from .module import MotionModule
 
-_BUSY_STATES = (int(AxisState.ErrorStop), int(AxisState.Disabled))
+class Supervision:
+    """The supervision of all axes, with what each check needs precomputed from the discrete state.
 
+    Which axes a check applies to (servo ON, state, homing, torque control, home defined …) and its thresholds change
+    only with events, so they are compiled into per-check threshold arrays (+inf where the check is off) whenever one
+    of their sources changes; a period then costs a few comparisons of the continuous values against them.
+    """
 
-def supervise(m: MotionModule) -> None:
-    on = m.servo_on & (m.state != AxisState.ErrorStop)
-    if not on.any():
-        return
-    T = m.period_s
-    homing = m.state == AxisState.Homing
-    vel = m.cmd_vel
-    # ---- following error (not in torque control: no position loop, Cmd.Pos is the feedback of one period earlier)
-    fe = np.abs(m.cmd_pos - m.act_pos)
-    pos_loop = on & m.fe_check & ~m.trq_active
-    over = pos_loop & (m.fe_over > 0) & (fe > m.fe_over)
-    for i in np.flatnonzero(over):
-        m.axes[i].raise_error(E.E_FOLLOWING_ERROR, stop="immediate",
-                              detail=f"following error {fe[i]:g} > {m.fe_over[i]:g}")
-    warn = pos_loop & (m.fe_warn > 0) & (fe > m.fe_warn)
-    _observe(m, E.O_FOLLOWING_ERROR_WARNING, warn, on)
-    # ---- limit inputs during motion (homing handles them itself)
-    check = on & m.limit_check & ~homing
-    pos_hit = check & ((m.din & DI_POSITIVE_LIMIT) != 0) & (vel > 0)
-    neg_hit = check & ((m.din & DI_NEGATIVE_LIMIT) != 0) & (vel < 0)
-    for i in np.flatnonzero(pos_hit | neg_hit):
-        ax = m.axes[i]
-        if ax.state == AxisState.ErrorStop:
-            continue
-        code = E.E_POSI_LIMIT_DETECTED if pos_hit[i] else E.E_NEGA_LIMIT_DETECTED
-        ax.raise_error(code, stop=ax.limit_input_stop_mode())
-    # ---- software limits (Linear Mode, home defined)
-    sw = on & (m.sw_mode > 0) & ~m.rotary & m.homed & ~homing & (m.state != AxisState.ErrorStop)
-    if sw.any():
-        _software_limits(m, sw, T)
-    # ---- Linear Mode: the command position leaves the signed 40-bit pulse range (not in torque control, where
-    # overflow is "motion without a target position")
-    hi = m.cmd_pos > m.lin_max
-    out = hi | (m.cmd_pos < m.lin_min)
-    if out.any():  # rare: build the masks only then
-        for i in np.flatnonzero(out & on & ~m.rotary & ~m.trq_active):
-            m.axes[i].position_overflow(1 if hi[i] else -1)
-    # ---- warnings (observations)
-    _observe(m, E.O_VELOCITY_WARNING, on & (m.vel_warn > 0) & (np.abs(vel) > m.vel_warn), on)
-    _observe(m, E.O_ACCELERATION_WARNING, on & (m.acc_warn > 0) & (m.cmd_accdec > m.acc_warn), on)
-    _observe(m, E.O_DECELERATION_WARNING, on & (m.dec_warn > 0) & (-m.cmd_accdec > m.dec_warn), on)
+    def __init__(self, m: MotionModule) -> None:
+        self.m = m
+        n = m.n
+        self._key: bytes | None = None
+        self.n_on = 0
+        self.on = np.zeros(n, dtype=bool)
+        self.fe_over = np.full(n, np.inf)  # following error over value where checked, +inf elsewhere
+        self.fe_warn = np.full(n, np.inf)
+        self.any_fe_warn = False
+        self.limit_scope = np.zeros(n, dtype=bool)  # limit inputs checked (servo ON, not homing)
+        self.pos_limit_on = np.zeros(n, dtype=bool)  # … and the positive / negative limit input is ON
+        self.neg_limit_on = np.zeros(n, dtype=bool)
+        self.any_limit_on = False
+        self.sw = np.zeros(n, dtype=bool)
+        self.any_sw = False
+        self.ovf_scope = np.zeros(n, dtype=bool)
+        self.warn: dict[int, np.ndarray] = {}  # observation code → threshold (+inf where off)
+        self._fe = np.zeros(n)
+        self._b1 = np.zeros(n, dtype=bool)
+        self._b2 = np.zeros(n, dtype=bool)
+        self._w = np.zeros(n)
+
+    def _compile(self, key: bytes) -> None:
+        m = self.m
+        self._key = key
+        on = m.servo_on & (m.state != AxisState.ErrorStop)
+        self.on = on
+        self.n_on = int(np.count_nonzero(on))
+        homing = m.state == AxisState.Homing
+        pos_loop = on & m.fe_check & ~m.trq_active
+        self.fe_over = np.where(pos_loop & (m.fe_over > 0), m.fe_over, np.inf)
+        self.fe_warn = np.where(pos_loop & (m.fe_warn > 0), m.fe_warn, np.inf)
+        self.any_fe_warn = bool(np.isfinite(self.fe_warn).any())
+        self.limit_scope = on & m.limit_check & ~homing
+        self.pos_limit_on = self.limit_scope & ((m.din & DI_POSITIVE_LIMIT) != 0)
+        self.neg_limit_on = self.limit_scope & ((m.din & DI_NEGATIVE_LIMIT) != 0)
+        self.any_limit_on = bool(self.pos_limit_on.any() or self.neg_limit_on.any())
+        self.sw = on & (m.sw_mode > 0) & ~m.rotary & m.homed & ~homing
+        self.any_sw = bool(self.sw.any())
+        self.ovf_scope = on & ~m.rotary & ~m.trq_active
+        self.warn = {}
+        for code, limit in ((E.O_VELOCITY_WARNING, m.vel_warn), (E.O_ACCELERATION_WARNING, m.acc_warn),
+                            (E.O_DECELERATION_WARNING, m.dec_warn)):
+            armed = on & (limit > 0)
+            if armed.any():
+                self.warn[code] = np.where(armed, limit, np.inf)
+
+    def __call__(self) -> None:
+        m = self.m
+        key = b"".join((m.servo_on.tobytes(), m.state.tobytes(), m.fe_check.tobytes(), m.limit_check.tobytes(),
+                        m.trq_active.tobytes(), m.homed.tobytes(), m.din.tobytes(),
+                        m.sup_params_version.to_bytes(8, "little")))
+        if key != self._key:
+            self._compile(key)
+        if not self.n_on:
+            return
+        on = self.on
+        b1, b2 = self._b1, self._b2
+        # ---- following error (not in torque control: no position loop, Cmd.Pos is the feedback of one period
+        # earlier)
+        fe = np.subtract(m.cmd_pos, m.act_pos, out=self._fe)
+        np.abs(fe, out=fe)
+        over = np.greater(fe, self.fe_over, out=b1)
+        if np.count_nonzero(over):
+            for i in np.flatnonzero(over):
+                m.axes[i].raise_error(E.E_FOLLOWING_ERROR, stop="immediate",
+                                      detail=f"following error {fe[i]:g} > {m.fe_over[i]:g}")
+        if self.any_fe_warn or E.O_FOLLOWING_ERROR_WARNING in m.obs_set:
+            _observe(m, E.O_FOLLOWING_ERROR_WARNING, np.greater(fe, self.fe_warn, out=b2), on)
+        vel = m.cmd_vel
+        # ---- limit inputs during motion (homing handles them itself)
+        if self.any_limit_on:
+            pos_hit = self.pos_limit_on & (vel > 0)
+            neg_hit = self.neg_limit_on & (vel < 0)
+            for i in np.flatnonzero(pos_hit | neg_hit):
+                ax = m.axes[i]
+                if ax.state == AxisState.ErrorStop:
+                    continue
+                code = E.E_POSI_LIMIT_DETECTED if pos_hit[i] else E.E_NEGA_LIMIT_DETECTED
+                ax.raise_error(code, stop=ax.limit_input_stop_mode())
+        # ---- software limits (Linear Mode, home defined)
+        if self.any_sw:
+            sw = self.sw & (m.state != AxisState.ErrorStop)  # (an error stop of this period)
+            _software_limits(m, sw, m.period_s)
+        # ---- Linear Mode: the command position leaves the signed 40-bit pulse range (not in torque control, where
+        # overflow is "motion without a target position")
+        hi = np.greater(m.cmd_pos, m.lin_max, out=b1)
+        lo = np.less(m.cmd_pos, m.lin_min, out=b2)
+        lo |= hi
+        if np.count_nonzero(lo):  # rare: build the masks only then
+            for i in np.flatnonzero(lo & self.ovf_scope):
+                m.axes[i].position_overflow(1 if hi[i] else -1)
+        # ---- warnings (observations)
+        warn = self.warn
+        if warn or m.obs_set:
+            w = self._w
+            for code in (E.O_VELOCITY_WARNING, E.O_ACCELERATION_WARNING, E.O_DECELERATION_WARNING):
+                limit = warn.get(code)
+                if limit is not None:
+                    if code == E.O_VELOCITY_WARNING:
+                        values = np.abs(vel, out=w)
+                    elif code == E.O_ACCELERATION_WARNING:
+                        values = m.cmd_accdec
+                    else:
+                        values = np.negative(m.cmd_accdec, out=w)
+                    _observe(m, code, np.greater(values, limit, out=b2), on)
+                elif code in m.obs_set:
+                    _observe(m, code, np.zeros(m.n, dtype=bool), on)
 
 
 def _observe(m: MotionModule, code: int, active: np.ndarray, scope: np.ndarray) -> None:
     """Set the observation where `active`, clear it where it was set by this check and `scope` holds. `m.obs_set`
-    remembers where this check set it, so a period without warnings costs two vector operations, no axis loop."""
+    holds where each check has set its observation (a code is removed when no axis has it any more), so a period
+    without warnings costs one comparison per configured check."""
     flags = m.obs_set.get(code)
-    if flags is None:
-        flags = m.obs_set[code] = np.zeros(m.n, dtype=bool)
-    if active.any():
+    if np.count_nonzero(active):
+        if flags is None:
+            flags = m.obs_set[code] = np.zeros(m.n, dtype=bool)
         for i in np.flatnonzero(active):
             m.axes[i].set_observation(code, True)
         flags |= active
+    if flags is None:
+        return
     gone = flags & ~active & scope
-    if gone.any():
+    if np.count_nonzero(gone):
         for i in np.flatnonzero(gone):
             a = m.axes[i]
             if code in a.observations:
                 a.set_observation(code, False)
         flags &= ~gone
+        if not np.count_nonzero(flags):
+            del m.obs_set[code]
 
 
 def _software_limits(m: MotionModule, sw: np.ndarray, T: float) -> None:
