@@ -66,6 +66,12 @@ _DRV_OF_SW = np.array([_drv_of_statusword(sw) for sw in range(1 << 16)], dtype=n
 _MODE_BITS = np.zeros(256, dtype=np.uint32)
 _MODE_BITS[8], _MODE_BITS[9], _MODE_BITS[10] = _B["CSP"], _B["CSV"], _B["CST"]
 _SERVO_ON_BIT = _B["ServoOn"]
+# 60FDh bits 0 (negative limit), 1 (positive limit), 2 (home switch), 16 (EXT1), 17 (EXT2) packed into 5 bits →
+# DrvStatus bits
+assert (DI_NEGATIVE_LIMIT, DI_POSITIVE_LIMIT, DI_HOME_SWITCH, DI_EXT1, DI_EXT2) == (1, 2, 4, 1 << 16, 1 << 17)
+_DRV_OF_DIN = np.array([(_B["N_OT"] if k & 1 else 0) | (_B["P_OT"] if k & 2 else 0) | (_B["HomeSw"] if k & 4 else 0)
+                        | ((_B["Latch1"] | _B["Home"]) if k & 8 else 0) | (_B["Latch2"] if k & 16 else 0)
+                        for k in range(32)], dtype=np.uint32)
 _VIRTUAL_ON = _B["ServoOn"] | _B["CSP"] | _B["Ready"] | _B["MainPower"]
 _VIRTUAL_OFF = _B["Ready"] | _B["MainPower"]
 _CW_FOR_STATE = np.full(0x70, CW_SHUTDOWN, dtype=np.uint16)
@@ -145,6 +151,7 @@ class MotionModule:
         self.limit_check = np.ones(n, dtype=bool)  # FALSE while homing handles the limit inputs itself
         # torque control (MC_TorqueControl, MC_SetTorqueLimit); torques in % of the rated torque, signed
         self.trq_active = np.zeros(n, dtype=bool)  # a torque instruction controls the axis: the MC module sends CST
+        self._n_trq = 0  # count of trq_active (changed only by _start_torque / leave_torque)
         self.trq_cmd = np.zeros(n)  # Cmd.Trq: the command torque (outside torque control: Act.Trq)
         self.act_trq = np.zeros(n)  # Act.Trq: 6077h torque actual value
         self.trq_target = np.zeros(n)  # target torque (sign = Direction)
@@ -211,7 +218,13 @@ class MotionModule:
                                    + ", ".join(missing))
         self._mode_wait = np.zeros(len(rows), dtype=np.int64)  # periods the drive has not taken the mode sent
         self._mode_limit = max(1, round(1.0 / period_s))  # 7439 after 1 s
-        self._prev_pos32 = np.zeros(len(rows), dtype=np.int64)
+        self._prev_pos32 = np.zeros(len(rows), dtype=np.int32)
+        self._d32 = np.zeros(len(rows), dtype=np.int32)
+        self._new_act = np.zeros(len(rows))
+        self._discrete_key: bytes | None = None  # raw discrete inputs of the last period (statusword, 60FDh …)
+        self._virtual_key: bytes | None = None
+        self._n_off = n  # axes with the servo OFF (their command position reads the actual position)
+        self._servo_seen = np.zeros(n, dtype=bool)  # servo states the axes were told of (on_servo_changed)
         if network is not None and len(rows):
             self._prev_pos32[:] = network.tx["position_actual"][self.bus_slaves]
             self.act_count[self.bus_rows] = self._prev_pos32
@@ -312,6 +325,7 @@ class MotionModule:
             self.prof_vel[i] = 0.0
             self.prof_acc[i] = 0.0
             self.trq_active[i] = True
+            self._n_trq += 1
         self.trq_target[i] = job.info["torque"]
         self.trq_rate[i] = job.info["ramp"]
         self.trq_vlim[i] = job.velocity
@@ -327,6 +341,7 @@ class MotionModule:
         if not self.trq_active[i]:
             return
         self.trq_active[i] = False
+        self._n_trq -= 1
         self.trq_reached[i] = False
         self._trq_left[i] = self.cycle
         if not self.on_bus[i]:
@@ -403,66 +418,89 @@ class MotionModule:
 
     # ------------------------------------------------------------------ stage 2: inputs
     def inputs(self) -> None:
-        T = self.period_s
-        prev_on = self.servo_on.copy()  # (servo changes are rare events handled per axis below)
-        if self.trq_active.any():
+        """Stage 2. Continuous values (positions, velocities, torques) every period; the discrete signals (statusword,
+        modes display, digital inputs, touch probes, process-data state) only when their raw values changed."""
+        if self._n_trq:
             self.prev_act_pos[:] = self.act_pos  # Cmd.Pos in torque control: Act.Pos of one period earlier
+        servo_changed = False
         if self.bus_rows.size:
-            tx = self.network.tx  # type: ignore[union-attr]
+            net = self.network
+            tx = net.tx  # type: ignore[union-attr]
             rows, sl = self._rows_sel, self._sl_sel
-            sw = tx["statusword"][sl].copy()
-            pos32 = tx["position_actual"][sl].astype(np.int64)
-            delta = (pos32 - self._prev_pos32 + 2**31) % 2**32 - 2**31
-            self._prev_pos32 = pos32
-            self.act_count[rows] += delta
-            new_act = self.act_count[rows] / self.ppu[rows] + self.pos_offset[rows]
-            self.act_vel[rows] = (new_act - self.act_pos[rows]) / T
+            # actual position: the 32-bit count unwrapped (int32 differences wrap like the object)
+            pos32 = tx["position_actual"][sl]
+            d = np.subtract(pos32, self._prev_pos32, out=self._d32)
+            self._prev_pos32[:] = pos32
+            self.act_count[rows] += d
+            new_act = np.divide(self.act_count[rows], self.ppu[rows], out=self._new_act)
+            new_act += self.pos_offset[rows]
+            self.act_vel[rows] = (new_act - self.act_pos[rows]) / self.period_s
             self.act_pos[rows] = new_act
-            din = tx["digital_inputs"][sl] ^ self._inv_mask[rows]
-            self.din[rows] = din
-            drv = _DRV_OF_SW[sw]
-            oe = (drv & _SERVO_ON_BIT) != 0
-            ok = self.network.pd_ok[sl]  # type: ignore[union-attr]
-            if not ok.all() or not self.pd_ok[rows].all():
-                self._watch_communication(self.bus_rows, ok)
-                oe &= ok
-            fault = (sw & 0x0008) != 0
-            if fault.any() or self.drv_fault[rows].any():
-                self._watch_drive_faults(self.bus_rows, fault & ok, self.bus_slaves)
-            mode = tx["modes_display"][sl].copy()
-            drv |= _MODE_BITS[mode.view(np.uint8)] * oe
-            self.drv_mode[rows] = mode
             self.act_trq[rows] = tx["torque_actual"][sl] / 10.0  # 0.1 % units
+            ok = net.pd_ok[sl]  # type: ignore[union-attr]
+            key = b"".join((tx["statusword"][sl].tobytes(), tx["digital_inputs"][sl].tobytes(),
+                            tx["modes_display"][sl].tobytes(), tx["touch_probe_status"][sl].tobytes(),
+                            tx["touch_probe_pos1"][sl].tobytes(), tx["touch_probe_pos2"][sl].tobytes(),
+                            ok.tobytes(), self._inv_mask.tobytes()))
+            if key != self._discrete_key:
+                self._discrete_key = key
+                servo_changed = self._bus_discrete(tx, rows, sl, ok)
             if self._mode_check:
                 # the drive must report the mode of operation sent within 1 s (7439, MC_TorqueControl rules)
-                pending = (self.network.rx["modes_of_operation"][sl] != mode) & oe  # type: ignore[union-attr]
+                mode = self.drv_mode[rows]
+                oe = self.servo_on[rows]
+                pending = (net.rx["modes_of_operation"][sl] != mode) & oe  # type: ignore[union-attr]
                 self._mode_wait = np.where(pending, self._mode_wait + 1, 0)
                 self._mode_check = bool(pending.any()) or self._trq_out
                 for k in np.flatnonzero(self._mode_wait >= self._mode_limit):
                     self._mode_wait[k] = 0
                     self._mode_switch_failed(int(self.bus_rows[k]), int(mode[k]))
-            drv |= ((din & DI_POSITIVE_LIMIT) != 0) * np.uint32(_B["P_OT"])
-            drv |= ((din & DI_NEGATIVE_LIMIT) != 0) * np.uint32(_B["N_OT"])
-            drv |= ((din & DI_HOME_SWITCH) != 0) * np.uint32(_B["HomeSw"])
-            drv |= ((din & DI_EXT1) != 0) * np.uint32(_B["Latch1"] | _B["Home"])
-            drv |= ((din & DI_EXT2) != 0) * np.uint32(_B["Latch2"])
-            self.drv[rows] = drv
-            self.servo_on[rows] = oe
-            self.tp_status[rows] = tx["touch_probe_status"][sl]
-            self.tp_pos1[rows] = tx["touch_probe_pos1"][sl]
-            self.tp_pos2[rows] = tx["touch_probe_pos2"][sl]
         if self.virtual_rows.size:
             v = self.virtual_rows
-            self.servo_on[v] = self.servo_req[v]
-            self.drv[v] = np.where(self.servo_on[v], _VIRTUAL_ON, _VIRTUAL_OFF)
-            if self.trq_active.any():
+            key = self.servo_req.tobytes()
+            if key != self._virtual_key:
+                self._virtual_key = key
+                on = self.servo_req[v]
+                servo_changed |= bool((self.servo_on[v] != on).any())
+                self.servo_on[v] = on
+                self.drv[v] = np.where(on, _VIRTUAL_ON, _VIRTUAL_OFF)
+            if self._n_trq:
                 self.act_trq[v] = np.where(self.trq_active[v], self.trq_cmd[v], 0.0)  # no drive: as commanded
-        for i in np.flatnonzero(self.servo_on != prev_on):
-            self.axes[i].on_servo_changed(bool(self.servo_on[i]))
+        if servo_changed:
+            prev_on = self._servo_seen
+            for i in np.flatnonzero(self.servo_on != prev_on):
+                self.axes[i].on_servo_changed(bool(self.servo_on[i]))
+            self._servo_seen = self.servo_on.copy()
+            self._n_off = self.n - int(np.count_nonzero(self.servo_on))
         # Servo OFF: the command position reads the actual position (manual §2.3, Cmd.Pos).
-        off = ~self.servo_on
-        if off.any():
-            self.cmd_pos[off] = self.act_pos[off]
+        if self._n_off:
+            np.copyto(self.cmd_pos, self.act_pos, where=~self.servo_on)
+
+    def _bus_discrete(self, tx: np.ndarray, rows: Any, sl: Any, ok: np.ndarray) -> bool:
+        """The discrete inputs of the axes on the bus changed: DrvStatus, servo state, inputs, latches, faults.
+        Returns whether a servo state changed."""
+        sw = tx["statusword"][sl]
+        din = tx["digital_inputs"][sl] ^ self._inv_mask[rows]
+        self.din[rows] = din
+        drv = _DRV_OF_SW[sw]
+        oe = (drv & _SERVO_ON_BIT) != 0
+        if not ok.all() or not self.pd_ok[rows].all():
+            self._watch_communication(self.bus_rows, ok)
+            oe &= ok
+        fault = (sw & 0x0008) != 0
+        if fault.any() or self.drv_fault[rows].any():
+            self._watch_drive_faults(self.bus_rows, fault & ok, self.bus_slaves)
+        mode = tx["modes_display"][sl]
+        drv |= _MODE_BITS[mode.view(np.uint8)] * oe
+        self.drv_mode[rows] = mode
+        drv |= _DRV_OF_DIN[(din & 0x7) | ((din >> 13) & 0x18)]
+        self.drv[rows] = drv
+        changed = bool((self.servo_on[rows] != oe).any())
+        self.servo_on[rows] = oe
+        self.tp_status[rows] = tx["touch_probe_status"][sl]
+        self.tp_pos1[rows] = tx["touch_probe_pos1"][sl]
+        self.tp_pos2[rows] = tx["touch_probe_pos2"][sl]
+        return changed
 
     def reset_mc_errors(self) -> list[str]:
         """ResetMCError: reset MC common errors and the errors of every stopped axis. Returns axes still stopping."""
@@ -525,7 +563,7 @@ class MotionModule:
                     continue
                 # keep reporting while the end is pending (final command in transit, in-position check)
                 self.notify[i] = axis.on_profile_finished(job)
-        if self.trq_active.any():
+        if self._n_trq:
             self._torque_stage(cycle, T)
         # derived command values (manual §2.3: differences of command positions / velocities)
         vel = (self.cmd_pos - self.prev_cmd_pos) / T
@@ -616,7 +654,7 @@ class MotionModule:
                 cw = np.where(req, CW_FAULT_RESET if self.cycle % 2 else 0, cw)
                 self._fault_resets = bool(self.fault_reset_req.any())
             rx["controlword"][sl] = cw
-            if self.trq_active.any() or self._trq_out:
+            if self._n_trq or self._trq_out:
                 # torque control: CST with the command torque and the velocity limit (6071h, 607Fh)
                 ta = self.trq_active[rows]
                 rx["modes_of_operation"][sl] = np.where(ta, MODE_CST, MODE_CSP)

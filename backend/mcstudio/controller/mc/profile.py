@@ -291,7 +291,7 @@ class ProfileTable:
         self.seg[i] = k
         self.c_t0[i] = self.t[i, k]
         self.c_p[i] = self.p[i, k]
-        self.c_v[i] = v = self.v[i, k]
+        self.c_v[i] = self.v[i, k]
         self.c_a[i] = a = self.a[i, k]
         self.c_j[i] = j = self.j[i, k]
         self.c_a2[i] = a * 0.5
