@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import gzip
 from pathlib import Path
 
 from fastapi.testclient import TestClient
@@ -83,6 +84,26 @@ def test_malformed_esi_is_422(client: TestClient) -> None:
     r = client.post("/api/v1/esi", files={"file": ("bad.xml", b"<EtherCATInfo><Vendor>", "application/xml")})
     assert r.status_code == 422
     assert r.json()["detail"][0]["loc"] == ["body", "file"]
+
+
+def test_odd_esi_uploads_are_4xx_never_5xx(client: TestClient) -> None:
+    good = SOES.read_bytes()
+    odd = [b"", b"\x00" * 64, gzip.compress(good), bytes(range(256)), b"<html/>", b"<EtherCATInfo/>",
+           b'<?xml version="1.0"?><!DOCTYPE x [<!ENTITY a "b">]><EtherCATInfo/>',
+           good.decode().encode("utf-32")]
+    for data in odd:
+        r = client.post("/api/v1/esi", files={"file": ("odd.xml", data, "application/xml")})
+        assert r.status_code == 422, (data[:20], r.status_code)
+    assert client.post("/api/v1/esi", data={"x": "1"}).status_code == 422  # no file part
+
+
+def test_esi_file_names_are_kept_loadable(client: TestClient, project_dir: Path) -> None:
+    """The project loads `esi/*.xml` on opening: an upload named `Drive.XML` is kept as `Drive.xml`, a name of dots
+    only as `device.xml` (not the hidden `.xml`); a UTF-16 file that declares UTF-8 (re-saved by an editor) imports."""
+    text = SOES.read_text(encoding="utf-8")
+    for name, data in (("OMRON R88D.XML", SOES.read_bytes()), ("....", text.encode("utf-16"))):
+        assert client.post("/api/v1/esi", files={"file": (name, data, "application/xml")}).status_code == 200
+    assert sorted(p.name for p in (project_dir / "esi").iterdir()) == ["OMRON_R88D.xml", "device.xml"]
 
 
 def test_faults(client: TestClient) -> None:

@@ -20,7 +20,8 @@ class _M(BaseModel):
 class PdoEntryDescription(_M):
     index: int = Field(ge=0, le=0xFFFF, description="Object index; 0 = padding (a gap of bit_len bits)")
     subindex: int = Field(0, ge=0, le=255)
-    bit_len: int = Field(ge=1, le=64)
+    bit_len: int = Field(ge=1, le=0xFFFF, description="Width in bits; entries wider than 64 bits (strings, byte "
+                         "arrays, gaps) only reserve their bits in the process image")
     name: str = ""
     data_type: str = Field("", description="ESI data type name (UINT, DINT, BOOL …); empty for padding")
 

@@ -29,10 +29,13 @@ from .devices import DeviceDescription, EsiFile, VendorDescription
 RX_RANGE = (0x1600, 0x17FF)
 TX_RANGE = (0x1A00, 0x1BFF)
 DEFAULT_MAX_ENTRIES = 32
-MAX_ENTRY_BITS = 0xFFFF  # far beyond any real entry (the SII stores 8 bits); bounds what a broken file can cost
+MAX_ENTRY_BITS = 0xFFFF  # the model's bound (`PdoEntryDescription.bit_len`); a CoE mapping entry stores 8 bits
 MAX_WARNINGS = 200
 MAILBOX_PROTOCOLS = ("AoE", "EoE", "CoE", "FoE", "SoE", "VoE")
 SM_TYPES = ("MBoxOut", "MBoxIn", "Outputs", "Inputs")
+# Beckhoff's sync managers for dynamic process data (AX5000 SoE drives: `<Sm …>DynamicOutputs</Sm>`): known, carried
+# as "Unknown" (no PDO is assigned to them by default), without a warning
+SM_TYPES_OTHER = ("DynamicOutputs", "DynamicInputs")
 ENGLISH = "1033"  # LcId of English (United States), the language ESI tools fall back to
 
 _HEX_DIGITS = frozenset("0123456789abcdefABCDEF")
@@ -117,7 +120,9 @@ def _read_xml(data: bytes, warn: Warn) -> ET.Element:
     # Latin-1 keeps byte offsets (and the ASCII markup) of any ASCII-compatible encoding.
     text = data.decode(utf16, errors="replace") if utf16 else data.decode("latin-1")
     misplaced = _check_prolog(text)
-    source: bytes | str = data
+    # UTF-16 (told by its byte order mark or its first bytes): parsed as text, whatever the declaration says — a
+    # file an editor saved as "Unicode" keeps its `encoding="UTF-8"`, which the parser would refuse
+    source: bytes | str = text.removeprefix("\ufeff") if utf16 else data
     declared = _declared_encoding(text)
     if misplaced is not None:
         start, end = misplaced
@@ -125,7 +130,7 @@ def _read_xml(data: bytes, warn: Warn) -> ET.Element:
         warn(f"line {line}: the XML declaration is not at the start of the file; it is ignored")
         keep_lines = "\n" * text.count("\n", start, end)
         if utf16:
-            source = text[:start] + keep_lines + text[end:]
+            source = (text[:start] + keep_lines + text[end:]).removeprefix("\ufeff")
         else:
             raw = data[:start] + keep_lines.encode() + data[end:]
             source = _decode(raw, declared, warn)
@@ -480,6 +485,8 @@ class _DeviceReader:
                       for attr in ("StartAddress", "DefaultSize", "MinSize", "MaxSize", "ControlByte")}
             text = _text(sm)
             sm_type = next((t for t in SM_TYPES if t.lower() == text.lower()), None)
+            if sm_type is None and any(t.lower() == text.lower() for t in SM_TYPES_OTHER):
+                sm_type = "Unknown"
             if sm_type is None:
                 sm_type = _sm_type_of_control_byte(values["ControlByte"]) if not text else None
                 if sm_type is None:
@@ -550,10 +557,8 @@ class _DeviceReader:
             return _padding(bit_len, name)
         if index == 0:
             return _padding(bit_len, name)
-        if bit_len > 64:
-            self.warn(f"{where}: {index:04X}h:{subindex:02X}h is {bit_len} bits; entries over 64 bits are kept "
-                      "as a gap")
-            return _padding(bit_len, name)
+        # wider than 64 bits (a STRING, an ARRAY OF BYTE in a gateway's or IO-Link master's PDO): kept as it is —
+        # the process image reserves its bits; no emulated object is that wide
         data_type = _text(entry.find("DataType")) or object_types.get((index, subindex), "")
         return [{"index": index, "subindex": subindex, "bit_len": bit_len, "name": name, "data_type": data_type}]
 
@@ -610,13 +615,8 @@ def _fit_range(pdos: list[_Pdo], bounds: tuple[int, int]) -> dict[int, int]:
 
 
 def _padding(bit_len: int, name: str = "") -> list[_Entry]:
-    """A gap of `bit_len` bits (in pieces of at most 64 bits, the model's limit)."""
-    out: list[_Entry] = []
-    while bit_len > 0:
-        n = min(bit_len, 64)
-        out.append({"index": 0, "subindex": 0, "bit_len": n, "name": name, "data_type": ""})
-        bit_len -= n
-    return out
+    """A gap of `bit_len` bits (one entry, as the file gives it)."""
+    return [{"index": 0, "subindex": 0, "bit_len": bit_len, "name": name, "data_type": ""}]
 
 
 def _pdo_data(p: _Pdo) -> dict[str, object]:

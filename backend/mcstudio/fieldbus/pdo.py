@@ -30,7 +30,7 @@ class _Strict(BaseModel):
 class PdoEntryConfig(_Strict):
     index: int = Field(ge=0, le=0xFFFF, description="Object index; 0 = padding")
     subindex: int = Field(0, ge=0, le=255)
-    bit_len: int = Field(ge=1, le=64)
+    bit_len: int = Field(ge=1, le=0xFFFF)
 
 
 class PdoMappingConfig(_Strict):
@@ -41,19 +41,83 @@ class PdoMappingConfig(_Strict):
 class SlavePdoConfig(_Strict):
     """What a slave exchanges: the PDO assignment (1C12h/1C13h) and the content of the assigned PDOs."""
 
-    rx_assign: list[int] = Field(default_factory=list, max_length=64, description="1C12h: RxPDOs, in order")
-    tx_assign: list[int] = Field(default_factory=list, max_length=64, description="1C13h: TxPDOs, in order")
+    rx_assign: list[int] = Field(default_factory=list, max_length=254, description="1C12h: RxPDOs, in order")
+    tx_assign: list[int] = Field(default_factory=list, max_length=254, description="1C13h: TxPDOs, in order")
     mappings: list[PdoMappingConfig] = Field(
         default_factory=list, description="Entries of the assigned PDOs (a PDO not listed has its description's)")
 
 
 def default_pdo_config(device: DeviceDescription) -> SlavePdoConfig:
-    """The device's default: the PDOs its description assigns to a sync manager, with their default entries."""
-    rx = [p for p in device.rx_pdos if p.sm is not None or p.mandatory]
-    tx = [p for p in device.tx_pdos if p.sm is not None or p.mandatory]
+    """The device's default, as a configurator makes it from the ESI: the PDOs the description assigns to a sync
+    manager (`Sm`) or marks mandatory, in file order, with their default entries — less those a PDO taken before
+    excludes (or that exclude it), and less those that would map an object a PDO taken before already maps (vendor
+    files mark alternatives with `Sm` too; a mandatory PDO is always taken). A direction where no PDO carries `Sm`
+    takes the default assignment of the dictionary (1C12h/1C13h subindex defaults), when it names PDOs of the device.
+    The result always passes `validate_pdo_config` as far as the description allows."""
+    rx = _default_assignment(device, device.rx_pdos, 0x1C12)
+    tx = _default_assignment(device, device.tx_pdos, 0x1C13)
     return SlavePdoConfig(
         rx_assign=[p.index for p in rx], tx_assign=[p.index for p in tx],
-        mappings=[_mapping_of(p) for p in (*rx, *tx)])
+        mappings=[_mapping_of(p) for p in (*rx, *tx) if len(p.entries) <= MAX_MAPPING_ENTRIES])
+
+
+MAX_MAPPING_ENTRIES = 254  # subindexes 1–254 of a mapping object (`PdoMappingConfig.entries`)
+
+
+def _default_assignment(device: DeviceDescription, pdos: list[PdoDescription], assign_object: int
+                        ) -> list[PdoDescription]:
+    marked = [p for p in pdos if p.sm is not None or p.mandatory]
+    if not any(p.sm is not None for p in pdos):
+        by_index = {p.index: p for p in pdos}
+        from_dictionary = [by_index[i] for i in _dictionary_assignment(device, assign_object) if i in by_index]
+        marked = [*from_dictionary, *(p for p in marked if p not in from_dictionary)]
+    soe = _is_soe(device)
+    taken: list[PdoDescription] = []
+    mapped: set[tuple[int, int]] = set()
+    for p in sorted(marked, key=lambda q: not q.mandatory):  # mandatory first, file order otherwise
+        if not p.mandatory:
+            if any(p.index in q.excludes or q.index in p.excludes for q in taken):
+                continue
+            if not (soe and p.esi_index is not None) and mapped & _objects_of(p):
+                continue
+        taken.append(p)
+        mapped |= _objects_of(p)
+        if len(taken) == MAX_MAPPING_ENTRIES:
+            break
+    order = {p.index: k for k, p in enumerate(pdos)}
+    return sorted(taken, key=lambda q: order[q.index])
+
+
+def _objects_of(p: PdoDescription) -> set[tuple[int, int]]:
+    return {(e.index, e.subindex) for e in p.entries if e.index}
+
+
+def _dictionary_assignment(device: DeviceDescription, index: int) -> list[int]:
+    """The PDO indexes of the dictionary's default value of 1C12h/1C13h (subindexes 1… up to subindex 0's value)."""
+    subs = {o.subindex: o.default for o in device.objects if o.index == index}
+    count = _int(subs.get(0))
+    out: list[int] = []
+    for k in range(1, (count if count is not None else len(subs)) + 1):
+        value = _int(subs.get(k))
+        if value:
+            out.append(value)
+    return out
+
+
+def _int(text: str | None) -> int | None:
+    if text is None:
+        return None
+    s = text.strip()
+    try:
+        return int(s[2:], 16) if s[:2].lower() in ("#x", "0x") else int(s)
+    except ValueError:
+        return None
+
+
+def _is_soe(device: DeviceDescription) -> bool:
+    """A Servo-over-EtherCAT drive: its PDOs are telegrams (MDT/AT) numbered by IDN in the ESI, and the same IDN
+    (e.g. S-0-0134, the control word) appears in the telegram of each channel of a multi-axis drive."""
+    return "SoE" in device.mailbox
 
 
 def _mapping_of(p: PdoDescription) -> PdoMappingConfig:
@@ -158,13 +222,15 @@ def validate_pdo_config(device: DeviceDescription, cfg: SlavePdoConfig) -> list[
         return issues
     # objects mapped twice across the PDOs of one direction, sizes, and wide unaligned entries
     maps = effective_mappings(device, cfg)
+    telegrams = {p.index for p in (*device.rx_pdos, *device.tx_pdos) if p.esi_index is not None} \
+        if _is_soe(device) else set()
     for key, lst, sm_type in (("rx_assign", cfg.rx_assign, "Outputs"), ("tx_assign", cfg.tx_assign, "Inputs")):
         bits = 0
         seen2: dict[tuple[int, int], int] = {}
         for idx in lst:
             for e in maps[idx]:
                 if e.index:
-                    if (e.index, e.subindex) in seen2:
+                    if (e.index, e.subindex) in seen2 and not {idx, seen2[(e.index, e.subindex)]} <= telegrams:
                         issues.append(PdoIssue((key,), f"{e.index:04X}h:{e.subindex:02X}h is in both PDO "
                                                        f"{seen2[(e.index, e.subindex)]:04X}h and {idx:04X}h"))
                     seen2[(e.index, e.subindex)] = idx

@@ -309,11 +309,12 @@ async def post_esi(file: UploadFile = File(..., description="ESI XML file"),
 
 
 def _safe_name(name: str) -> str:
+    """The file name the ESI is kept under in `esi/`: its base name, safe characters only, not hidden, ending in
+    `.xml` in lower case (the project loads `esi/*.xml`; `Vendor.XML` would be imported now and missed on reopening)."""
     base = name.replace("\\", "/").rsplit("/", 1)[-1]
     keep = "".join(ch if ch.isalnum() or ch in "-_." else "_" for ch in base)[:100].lstrip(".")
-    if not keep.lower().endswith(".xml"):
-        keep += ".xml"
-    return keep or "device.xml"
+    stem = keep[:-4] if keep.lower().endswith(".xml") else keep
+    return (stem if stem.strip("._") else "device") + ".xml"
 
 
 @router.post("/faults", response_model=FaultOut, summary="Fault injection for commissioning drills",
