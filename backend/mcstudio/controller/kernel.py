@@ -145,7 +145,11 @@ class Controller:
         self.mc = MotionModule(project, period_s=self.period_s, events=self.events, network=self.network)
         self.cycle = 0
         self.program: dict[int, ProgramEntry] = {}
-        self._calls: list[Callable[[], None]] | None = None
+        self._calls: list[FunctionBlock] | None = None  # the program's instances in call order (cached)
+        self._leased: dict[int, ProgramEntry] = {}  # the instances with a dead-man lease
+        # skip the calls of settled (sleeping) instances; False calls every instance every period, which must give
+        # the same outputs (tests/controller/test_fb_scheduling.py)
+        self.skip_settled = True
         self._next_id = 1
         self._view_cache: dict[int, tuple[dict[str, Any], dict[str, Any], FBView]] = {}
         self.snapshot: Snapshot = self._make_snapshot()
@@ -173,6 +177,8 @@ class Controller:
         if lease_s is not None:
             entry.lease_deadline = self.clock() + lease_s
         self.program[fb.id] = entry
+        if lease_s is not None:
+            self._leased[fb.id] = entry
         self._calls = None
         return fb
 
@@ -204,6 +210,7 @@ class Controller:
 
     def delete_fb(self, fb_id: int) -> None:
         entry = self.program.pop(fb_id, None)
+        self._leased.pop(fb_id, None)
         self._calls = None
         if entry is None:
             raise KernelError("id", f"no function-block instance {fb_id}", status=404)
@@ -211,8 +218,10 @@ class Controller:
 
     def check_leases(self) -> None:
         """Dead-man: an instance whose lease was not renewed drops its Execute/Enable-type inputs."""
+        if not self._leased:
+            return
         now = None
-        for entry in self.program.values():
+        for entry in self._leased.values():
             if entry.lease_deadline is None:
                 continue
             now = self.clock() if now is None else now
@@ -234,11 +243,16 @@ class Controller:
         if net.pending_events:
             self._network_events()
         mc.inputs()
-        calls = self._calls
-        if calls is None:  # the program changed: the instances' call methods, in creation order
-            calls = self._calls = [e.fb.call for e in self.program.values()]
-        for call in calls:
-            call()
+        fbs = self._calls
+        if fbs is None:  # the program changed: the instances in creation order
+            fbs = self._calls = [e.fb for e in self.program.values()]
+        if self.skip_settled:
+            for fb in fbs:
+                if not fb._asleep:  # a settled instance's call changes nothing (FunctionBlock.sleep)
+                    fb.call()
+        else:
+            for fb in fbs:
+                fb.call()
         mc.motion()
         mc.outputs()
         self.cycle += 1

@@ -53,6 +53,7 @@ class Axis(AxisPlanning):
         self.buffered: Job | None = None
         self.stop_holders: set[int] = set()  # ids of MC_Stop instances whose Execute is still TRUE
         self.power_owner: int | None = None  # MC_Power instance in control (the later instance wins)
+        self.power_sleepers: list[Any] = []  # MC_Power instances asleep on this axis's servo state
         self.override_owner: int | None = None
         self.torque_limit_owner: int | None = None  # MC_SetTorqueLimit instance in control (the later one wins)
         self.torque_limits: tuple[bool, float, bool, float] | None = None  # its inputs (direction enables, values)
@@ -280,7 +281,15 @@ class Axis(AxisPlanning):
         return next(iter(self.observations), 0)
 
     # ------------------------------------------------------------------ MC_Power
+    def wake_power(self) -> None:
+        """The servo state, request, owner or use of the axis changes: MC_Power instances watching it wake."""
+        if self.power_sleepers:
+            for fb in self.power_sleepers:
+                fb.wake()
+            self.power_sleepers.clear()
+
     def power(self, fb_id: int, enable: bool, enable_changed: bool) -> None:
+        self.wake_power()
         if enable_changed or self.power_owner is None:
             self.power_owner = fb_id
             self.forced_off = False
@@ -296,6 +305,7 @@ class Axis(AxisPlanning):
 
     def _release_servo(self) -> None:
         """Servo OFF: the running instruction is aborted and the command output stops at once."""
+        self.wake_power()
         self.servo_request = False
         self.m.servo_req[self.i] = False
         for job in (self.buffered, self.current):
@@ -306,6 +316,7 @@ class Axis(AxisPlanning):
 
     def on_servo_changed(self, on: bool) -> None:
         """Inputs stage: the drive reports a change of *Operation enabled*."""
+        self.wake_power()
         if on and self.config.drive.EncoderType == "absolute" and not self.homed:
             # absolute encoder: home defined when the axis becomes ready, with the [Absolute encoder home offset]
             # applied (MC_Power rules; omron-axis-instructions.md line 100)

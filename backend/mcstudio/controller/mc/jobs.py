@@ -52,9 +52,9 @@ class Job:
     direction: int = 0
     overridable: bool = False  # MC_SetOverride applies (the seven instructions the manual names)
     blendable: bool = False  # other positioning instructions may blend onto it
-    status: JobStatus = JobStatus.STARTING
+    _status: JobStatus = JobStatus.STARTING
     error_id: int = 0
-    in_velocity: bool = False
+    _in_velocity: bool = False
     replan: bool = False  # parameters changed (re-execution, override, SetPosition): plan again
     stopping: bool = False  # jog released: decelerating to the end of the job
     paused: bool = False  # override 0: the position job decelerated to 0 and waits
@@ -63,6 +63,30 @@ class Job:
     cmd_done_cycle: int = -1  # period in which the command profile reached its end
     rapid: bool = False  # Acceleration/Deceleration Over: planned with the acc/dec needed to make it
     info: dict[str, Any] = field(default_factory=dict)
+
+    # A change of status or InVelocity wakes the owning instance (the kernel does not call a settled instance;
+    # `FunctionBlock.wake`).
+    @property
+    def status(self) -> JobStatus:
+        return self._status
+
+    @status.setter
+    def status(self, value: JobStatus) -> None:
+        if value != self._status:
+            self._status = value
+            if self.owner is not None:
+                self.owner.wake()
+
+    @property
+    def in_velocity(self) -> bool:
+        return self._in_velocity
+
+    @in_velocity.setter
+    def in_velocity(self, value: bool) -> None:
+        if value != self._in_velocity:
+            self._in_velocity = value
+            if self.owner is not None:
+                self.owner.wake()
 
     @property
     def running(self) -> bool:

@@ -364,9 +364,11 @@ class MC_ChangeAxisUse(OneShotFB):
                 self.fail(0x5702, axis)
                 return
             axis.used = False
+            axis.wake_power()
             axis.homed = False  # switching to unused makes home undefined
         elif use == 2 and not axis.used:
             axis.used = True
+            axis.wake_power()
             axis.error_code = 0
         self.mc.log_info(axis, f"{axis.name} is now a {'used' if axis.used else 'unused'} axis")
         self.done_next()

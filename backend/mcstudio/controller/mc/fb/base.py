@@ -218,6 +218,8 @@ class FunctionBlock:
 
     def __init__(self, mc: MotionModule, fb_id: int, inputs: dict[str, Any] | None = None) -> None:
         object.__setattr__(self, "_ready", False)
+        # a settled instance sleeps: the kernel skips its calls until an input, its job or its axis wakes it
+        self._asleep = False
         self.mc = mc
         self.id = fb_id
         self.inp: dict[str, Any] = {v.name: v.default for v in (*self.DEF.inouts, *self.DEF.inputs)}
@@ -251,6 +253,17 @@ class FunctionBlock:
                 raise FBInputError(k, f"{self.DEF.name} has no input or in-out named {k!r}")
             coerced[k] = var.coerce(v)
         self.inp.update(coerced)
+        self.wake()
+
+    def wake(self) -> None:
+        """Call this instance again from the next call of the program on (something its call reads changed)."""
+        self.__dict__["_asleep"] = False
+
+    def sleep(self) -> None:
+        """The instance's call would change nothing until one of its inputs, its job or its axis changes: the kernel
+        skips it until `wake`. Only instances whose wake-up sources are all hooked may sleep (ExecuteFB without per-call
+        hooks, MC_Power)."""
+        self.__dict__["_asleep"] = True
 
     def on_delete(self) -> None:
         """The instance is removed from the program (release what it holds, e.g. a latch)."""
@@ -259,6 +272,7 @@ class FunctionBlock:
         for v in self.DEF.inputs:
             if v.dead_man:
                 self.inp[v.name] = False
+        self.wake()
 
     @property
     def label(self) -> str:
@@ -281,6 +295,7 @@ class FunctionBlock:
 
     # -- error latch: Error stays TRUE until the axis error is reset (or, without an axis, a common reset)
     def _set_error(self, code: int, axis: Axis | None) -> None:
+        self.wake()
         o = self.out
         o["Error"] = True
         o["ErrorID"] = code
@@ -339,6 +354,7 @@ class ExecuteFB(FunctionBlock):
         """Hook after the job ended (e.g. MC_Stop releases the Stopping hold)."""
 
     def _finish(self, flag: str) -> None:
+        self.wake()
         o = self.out
         o["Busy"] = False
         if "Active" in o:
@@ -383,8 +399,10 @@ class ExecuteFB(FunctionBlock):
             job = d["job"]
             if job is None:
                 if d["_steady"]:
+                    d["_asleep"] = True
                     return
             elif job.status is d["_seen_status"] and job.in_velocity == d["_seen_inv"]:
+                d["_asleep"] = True  # woken by a change of the job's status or InVelocity
                 return
         edge = exe and not self._prev_exe
         d["_prev_exe"] = exe  # (hot path: bypasses FunctionBlock.__setattr__)

@@ -100,6 +100,10 @@ class MC_Power(FunctionBlock):
                     and enable == axis.servo_request):
                 o["Busy"] = enable
                 o["Status"] = bool(axis.m.servo_on[axis.i])
+                # nothing changes until Enable, the axis's servo state, request, owner or use changes: sleep (the
+                # axis wakes its sleepers on each of those)
+                d["_asleep"] = True
+                axis.power_sleepers.append(self)
                 return
         d["_fast"] = None
         changed = enable != self._prev_enable
