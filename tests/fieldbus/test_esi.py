@@ -749,3 +749,30 @@ def test_utf16_file_that_declares_utf8() -> None:
     for codec in ("utf-16", "utf-16-be"):
         f = parse_esi(text.encode(codec) if codec == "utf-16" else b"\xfe\xff" + text.encode(codec))
         assert (f.devices[0].name, f.warnings) == ("Wandler ü", [])
+
+
+def test_pdo_ranges_swapped_and_two_output_sync_managers() -> None:
+    """Seen in ASIX's AX58100 EVB sample ESI (ISO-8859-1, `standalone="no"`, names in German only): the RxPDOs are
+    numbered #x1a00/#x1a01 and the TxPDOs #x1600/#x1601, the two output bytes go to two sync managers of type
+    Outputs (Sm0, Sm1, ControlByte #x44) and the inputs to Sm2. The PDOs are moved into their ranges, the file's index
+    kept in esi_index, and the default configuration takes all four."""
+    def one_byte(tag: str, index: str, sm: int, obj: str, sub: int) -> str:
+        return pdo(tag, index, entry(obj, str(sub), 8, "Output" if tag == "RxPdo" else "Input", "BITARR8"),
+                   f'Fixed="1" Sm="{sm}"')
+
+    body = ('<Sm StartAddress="#x0f02" ControlByte="#x44" Enable="1" OpOnly="1">Outputs</Sm>'
+            '<Sm StartAddress="#x0f03" ControlByte="#x44" Enable="1" OpOnly="1">Outputs</Sm>'
+            '<Sm StartAddress="#x1000" ControlByte="0" Enable="1">Inputs</Sm>'
+            + one_byte("RxPdo", "#x1a00", 0, "#x3101", 1) + one_byte("RxPdo", "#x1a01", 1, "#x3101", 2)
+            + one_byte("TxPdo", "#x1600", 2, "#x3001", 1) + one_byte("TxPdo", "#x1601", 2, "#x3001", 2))
+    dev = ('<Device Physics="YY"><Type ProductCode="#x00010200" RevisionNo="#x00000001">AX58100_EVB_DIO_16</Type>'
+           f'<Name LcId="1031">AX58100 EVB (Digital 16-Input/16-Output)</Name>{body}</Device>')
+    f = parse_esi(esi(dev, head='<?xml version="1.0" encoding="ISO-8859-1" standalone="no"?>\n'))
+    [d] = f.devices
+    assert d.name == "AX58100 EVB (Digital 16-Input/16-Output)"
+    assert [(p.index, p.esi_index, p.sm) for p in d.rx_pdos] == [(0x1600, 0x1A00, 0), (0x1601, 0x1A01, 1)]
+    assert [(p.index, p.esi_index, p.sm) for p in d.tx_pdos] == [(0x1A00, 0x1600, 2), (0x1A01, 0x1601, 2)]
+    assert [s.type for s in d.sync_managers] == ["Outputs", "Outputs", "Inputs"]
+    assert "RxPdo 1A00h → 1600h, RxPdo 1A01h → 1601h, TxPdo 1600h → 1A00h, TxPdo 1601h → 1A01h" in f.warnings[0]
+    cfg = default_pdo_config(d)
+    assert (cfg.rx_assign, cfg.tx_assign, validate_pdo_config(d, cfg)) == ([0x1600, 0x1601], [0x1A00, 0x1A01], [])
