@@ -92,6 +92,36 @@ class _Group:
     row_sel: Any = None
     rx_img: np.ndarray = field(default_factory=lambda: np.zeros((0, 0), dtype=np.uint8))
     tx_img: np.ndarray = field(default_factory=lambda: np.zeros((0, 0), dtype=np.uint8))
+    rx_copy: _Transfer | None = None  # compiled transfers of the whole group (every slave exchanging)
+    tx_copy: _Transfer | None = None
+
+
+class _Transfer:
+    """One direction of a group compiled into flat byte indices: record bytes → image bytes (one gather) → record
+    bytes (one scatter). Used when the layout has only whole, byte-aligned entries of their record field's width (the
+    usual mappings); other layouts go through `pack`/`unpack` with their bit operations."""
+
+    def __init__(self, layout: Layout, src: np.ndarray, src_rows: np.ndarray, dst: np.ndarray, dst_rows: np.ndarray,
+                 img: np.ndarray) -> None:
+        isz = src.dtype.itemsize
+        assert dst.dtype.itemsize == isz and img.flags.c_contiguous
+        self.src = src.view(np.uint8)
+        self.dst = dst.view(np.uint8)
+        self.img = img.reshape(-1)
+        self.gather = (src_rows[:, None] * isz + layout.src[None, :]).reshape(-1)
+        fast = layout.fast_img
+        self.scatter = (dst_rows[:, None] * isz + layout.fast_rec[None, :]).reshape(-1)
+        if fast.size == layout.nbytes:
+            self.pick: np.ndarray | None = None  # every image byte is an object byte
+        else:
+            self.pick = (np.arange(len(src_rows))[:, None] * layout.nbytes + fast[None, :]).reshape(-1)
+
+    def __call__(self) -> None:
+        np.take(self.src, self.gather, out=self.img, mode="clip")  # (indices are valid; clip avoids a buffer)
+        if self.pick is None:
+            self.dst[self.scatter] = self.img
+        else:
+            self.dst[self.scatter] = self.img[self.pick]
 
 
 def _sel(idx: np.ndarray, n: int) -> np.ndarray | slice:
@@ -178,6 +208,11 @@ class Network:
             g.row_sel = _sel(g.rows, len(self._records(kind)[0]))
             g.rx_img = np.zeros((len(members), g.rx.nbytes), dtype=np.uint8)
             g.tx_img = np.zeros((len(members), g.tx.nbytes), dtype=np.uint8)
+            dev_rx, dev_tx = self._records(kind)
+            if not g.rx.slow:
+                g.rx_copy = _Transfer(g.rx, self.rx, g.slaves, dev_rx, g.rows, g.rx_img)
+            if not g.tx.slow:
+                g.tx_copy = _Transfer(g.tx, dev_tx, g.rows, self.tx, g.slaves, g.tx_img)
             groups.append(g)
         self._where = {}
         for gi, g in enumerate(groups):
@@ -338,10 +373,13 @@ class Network:
         for g in self._groups:
             if not g.any_active:
                 continue
+            if g.all_active and g.rx_copy is not None:
+                g.rx_copy()
+                continue
             dev_rx, _ = self._records(g.kind)
             if g.all_active:
                 img = pack(g.rx, self.rx, g.slave_sel)
-                g.rx_img = img
+                g.rx_img[:] = img
                 unpack(g.rx, img, dev_rx, g.row_sel)
             else:
                 a = g.active
@@ -359,11 +397,14 @@ class Network:
         for g in self._groups:
             if not g.any_valid:
                 continue
+            if g.all_valid and g.tx_copy is not None:
+                g.tx_copy()
+                continue
             valid = g.inputs_valid
             _, dev_tx = self._records(g.kind)
             if g.all_valid:
                 img = pack(g.tx, dev_tx, g.row_sel)
-                g.tx_img = img
+                g.tx_img[:] = img
                 unpack(g.tx, img, self.tx, g.slave_sel)
             else:
                 img = pack(g.tx, dev_tx, g.rows[valid])
