@@ -154,11 +154,23 @@ def test_several_devices_decimal_and_hex_identities() -> None:
     assert f.warnings == []
 
 
-def test_duplicate_identity_keeps_the_first() -> None:
-    f = parse_esi(esi(device("#x5", "#x1", "First") + device("5", "1", "Second") + device("#x5", "#x2", "Third")))
-    assert [d.name for d in f.devices] == ["First", "Third"]
-    assert len(f.warnings) == 1
-    assert "Descriptions/Devices/Device[2]" in f.warnings[0] and "esi:00000099:00000005:00000001" in f.warnings[0]
+def test_duplicate_identity() -> None:
+    """One identity under several names (a drive family whose power ratings report the same product code and
+    revision) imports every different description, the later ones under '<id>:<n>'; an identical repetition is
+    dropped. The library keys them apart; a bus scan matches the first."""
+    f = parse_esi(esi(device("#x5", "#x1", "First") + device("5", "1", "Second") + device("#x5", "#x2", "Third")
+                      + device("#x00000005", "#x00000001", "First") + device("#x5", "#x1", "Fourth")))
+    assert [(d.name, d.id) for d in f.devices] == [
+        ("First", "esi:00000099:00000005:00000001"), ("Second", "esi:00000099:00000005:00000001:2"),
+        ("Third", "esi:00000099:00000005:00000002"), ("Fourth", "esi:00000099:00000005:00000001:3")]
+    assert f.warnings == [
+        "Descriptions/Devices/Device[2]: 'Second' has the same identity (esi:00000099:00000005:00000001) as "
+        "Descriptions/Devices/Device[1] ('First'); imported as esi:00000099:00000005:00000001:2",
+        "Descriptions/Devices/Device[4]: 'First' repeats Descriptions/Devices/Device[1] ('First') (same identity "
+        "esi:00000099:00000005:00000001 and PDOs); skipped",
+        "Descriptions/Devices/Device[5]: 'Fourth' has the same identity (esi:00000099:00000005:00000001) as "
+        "Descriptions/Devices/Device[1] ('First'); imported as esi:00000099:00000005:00000001:3"]
+    assert all(d.product_code == 5 for d in f.devices)
 
 
 def test_missing_identity_values_are_zero_with_a_warning() -> None:

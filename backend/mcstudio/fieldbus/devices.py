@@ -66,7 +66,8 @@ class ObjectDescription(_M):
 
 
 class DeviceDescription(_M):
-    id: str = Field(description="Library key: 'builtin:…' or 'esi:<vendor>:<product>:<revision>'")
+    id: str = Field(description="Library key: 'builtin:…' or 'esi:<vendor>:<product>:<revision>' (8 hex digits "
+                    "each; ':<n>' added for the n-th different device of one file with the same identity)")
     name: str
     vendor_id: int
     vendor_name: str = ""

@@ -68,7 +68,7 @@ def parse_esi(data: bytes, source: str = "") -> EsiFile:
         warnings.add(f"Descriptions/Modules: {n_modules} module description(s) not imported (modular devices get "
                      "their device-level PDOs only)")
     devices: list[DeviceDescription] = []
-    seen: dict[str, str] = {}
+    seen: dict[str, list[tuple[str, DeviceDescription]]] = {}
     for k, el in enumerate(device_els, 1):
         path = f"Descriptions/Devices/Device[{k}]"
         try:
@@ -76,15 +76,29 @@ def parse_esi(data: bytes, source: str = "") -> EsiFile:
         except Exception as err:  # a device the importer cannot make sense of must not stop the others
             warnings.add(f"{path}: device skipped: {_describe_exception(err)}")
             continue
-        if dev.id in seen:
-            warnings.add(f"{path}: {dev.name!r} has the same identity ({dev.id}) as {seen[dev.id]}; "
-                         "the first one is kept")
-            continue
-        seen[dev.id] = f"{path} ({dev.name!r})"
+        same = seen.setdefault(dev.id, [])
+        if same:
+            # vendors list one identity under several names (power ratings of one drive firmware): each different
+            # description is kept, the later ones under '<id>:<n>'; an identical repetition is dropped
+            twin = next((where for where, other in same if _same_description(other, dev)), None)
+            if twin is not None:
+                warnings.add(f"{path}: {dev.name!r} repeats {twin} (same identity {dev.id} and PDOs); skipped")
+                continue
+            new_id = f"{dev.id}:{len(same) + 1}"
+            warnings.add(f"{path}: {dev.name!r} has the same identity ({dev.id}) as {same[0][0]}; imported as "
+                         f"{new_id}")
+            same.append((f"{path} ({dev.name!r})", dev))
+            dev = dev.model_copy(update={"id": new_id})
+        else:
+            same.append((f"{path} ({dev.name!r})", dev))
         devices.append(dev)
     if not devices:
         raise EsiError("no device could be imported: " + "; ".join(warnings.items[:3]))
     return EsiFile(vendor=vendor, devices=devices, warnings=warnings.items)
+
+
+def _same_description(a: DeviceDescription, b: DeviceDescription) -> bool:
+    return (a.name, a.rx_pdos, a.tx_pdos, a.sync_managers) == (b.name, b.rx_pdos, b.tx_pdos, b.sync_managers)
 
 
 @dataclass
