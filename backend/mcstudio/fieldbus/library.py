@@ -9,7 +9,7 @@ from .builtin import BUILTIN_DEVICES, ENCODER_ID, SERVO_ID
 from .devices import DeviceDescription, EsiFile
 
 ESI_FOLDER = "esi"
-MAX_ESI_BYTES = 32 * 1024 * 1024
+MAX_ESI_BYTES = 100 * 1024 * 1024  # vendor catalogue files reach tens of MB (Beckhoff); ~12× in memory while parsed
 
 
 class DeviceLibrary:
