@@ -788,3 +788,25 @@ def test_pdo_ranges_swapped_and_two_output_sync_managers() -> None:
     assert "RxPdo 1A00h → 1600h, RxPdo 1A01h → 1601h, TxPdo 1600h → 1A00h, TxPdo 1601h → 1A01h" in f.warnings[0]
     cfg = default_pdo_config(d)
     assert (cfg.rx_assign, cfg.tx_assign, validate_pdo_config(d, cfg)) == ([0x1600, 0x1601], [0x1A00, 0x1A01], [])
+
+
+def test_object_6040h_of_a_positioning_terminal_is_not_a_cia402_drive() -> None:
+    """Seen in Beckhoff's EL7xxx ESI (a two-channel DC motor terminal, MDP 742): TxPDOs "POS Status compact/POS Status
+    Channel 1" (#x1a0a/#x1a0b, excluding each other) map 6040h:01… (Busy, In-Target …, actual position 6040h:11h),
+    next to 1C32h:20h (Sync error) and 18xxh:09 (TxPDO Toggle). Index 6040h made the device a CiA402 servo; only
+    6040h:00 in an RxPDO or 6041h:00 in a TxPDO (or profile 402) does."""
+    status = (entry("#x6040", "1", 1, "Status__Busy", "BOOL") + entry("#x6040", "2", 1, "Status__In-Target", "BOOL")
+              + entry("#x0", None, 14, "Status__Gap", None) + entry("#x1c32", "32", 1, "Status__Sync error", "BOOL")
+              + entry("#x1804", "9", 1, "Status__TxPDO Toggle", "BOOL") + entry("#x0", None, 6, "Status__Gap", None))
+    body = ('<Profile><ProfileNo>5001</ProfileNo></Profile>'
+            + pdo("TxPdo", "#x1a0a", status, 'Fixed="1" Sm="3"', "<Exclude>#x1a0b</Exclude>")
+            + pdo("TxPdo", "#x1a0b", status + entry("#x6040", "17", 32, "Actual position", "UDINT"), 'Fixed="1"',
+                  "<Exclude>#x1a0a</Exclude>"))
+    d = one(esi(device(body=body)))
+    assert (d.profile, d.kind) == (5001, "other")
+    assert [(p.index, p.excludes, p.sm) for p in d.tx_pdos] == [(0x1A0A, [0x1A0B], 3), (0x1A0B, [0x1A0A], None)]
+    cfg = default_pdo_config(d)
+    assert (cfg.tx_assign, validate_pdo_config(d, cfg)) == ([0x1A0A], [])
+    assert compile_layout(d, cfg, "tx", RX_DTYPE, d.kind).nbytes == 3
+    drive = one(esi(device(body=pdo("TxPdo", "#x1A00", entry("#x6041", "0", 16, "Statusword")))))
+    assert drive.kind == "servo"

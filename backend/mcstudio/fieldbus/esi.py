@@ -429,8 +429,11 @@ class _DeviceReader:
         if moved:
             self.warn(f"{self.path}: PDO indexes outside 1600h–17FFh (Rx) / 1A00h–1BFFh (Tx) are imported as "
                       f"{', '.join(moved)} (the ESI index stays in esi_index)")
-        mapped = {e["index"] for p in rx + tx for e in p.entries}
-        kind: Literal["servo", "other"] = "servo" if 402 in profiles or {0x6040, 0x6041} & mapped else "other"
+        # a CiA402 drive maps its control word 6040h:00 into an RxPDO or its status word 6041h:00 into a TxPDO;
+        # index 6040h alone is not enough: Beckhoff's MDP 742 terminals (EL7xxx) report "POS Status" as 6040h:01…
+        servo = 402 in profiles or any((e["index"], e["subindex"]) == (0x6040, 0) for p in rx for e in p.entries) \
+            or any((e["index"], e["subindex"]) == (0x6041, 0) for p in tx for e in p.entries)
+        kind: Literal["servo", "other"] = "servo" if servo else "other"
         return DeviceDescription.model_validate({
             "id": f"esi:{self.vendor.id:08X}:{product:08X}:{revision:08X}",
             "name": name,
