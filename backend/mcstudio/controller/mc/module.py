@@ -104,6 +104,7 @@ class MotionModule:
         self.cmd_vel = np.zeros(n)  # Cmd.Vel: difference of command positions (manual §2.3)
         self.cmd_accdec = np.zeros(n)
         self.cmd_jerk = np.zeros(n)
+        self._dv, self._da, self._dj, self._dw = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)  # work arrays
         self.prev_cmd_pos = np.zeros(n)
         self.act_pos = np.zeros(n)
         self.act_vel = np.zeros(n)
@@ -225,6 +226,12 @@ class MotionModule:
         self._virtual_key: bytes | None = None
         self._n_off = n  # axes with the servo OFF (their command position reads the actual position)
         self._servo_seen = np.zeros(n, dtype=bool)  # servo states the axes were told of (on_servo_changed)
+        self._out_w = np.zeros(len(rows))  # outputs stage: work arrays, and what the event-driven objects follow
+        self._out_i64 = np.zeros(len(rows), dtype=np.int64)
+        self._out_i32 = np.zeros(len(rows), dtype=np.int32)
+        self._cw_key: bytes | None = None
+        self._tp_key: bytes | None = None
+        self._csp_sent = False
         if network is not None and len(rows):
             self._prev_pos32[:] = network.tx["position_actual"][self.bus_slaves]
             self.act_count[self.bus_rows] = self._prev_pos32
@@ -566,18 +573,24 @@ class MotionModule:
         if self._n_trq:
             self._torque_stage(cycle, T)
         # derived command values (manual §2.3: differences of command positions / velocities)
-        vel = (self.cmd_pos - self.prev_cmd_pos) / T
-        accdec = (np.abs(vel) - np.abs(self.cmd_vel)) / T
-        jerk = (np.abs(accdec) - np.abs(self.cmd_accdec)) / T
-        if self.step_accdec.any():
+        vel, accdec, jerk, w = self._dv, self._da, self._dj, self._dw
+        np.subtract(self.cmd_pos, self.prev_cmd_pos, out=vel)
+        vel /= T
+        np.abs(vel, out=accdec)
+        accdec -= np.abs(self.cmd_vel, out=w)
+        accdec /= T
+        np.abs(accdec, out=jerk)
+        jerk -= np.abs(self.cmd_accdec, out=w)
+        jerk /= T
+        if np.count_nonzero(self.step_accdec):
             accdec[self.step_accdec] = 0.0
             jerk[self.step_accdec] = 0.0
-        self.cmd_jerk = jerk
-        self.cmd_accdec = accdec
-        self.cmd_vel = vel
-        moving = vel != 0.0
-        if moving.any():
-            self.last_dir[moving] = np.where(vel[moving] > 0, 1, -1)
+        np.copyto(self.cmd_jerk, jerk)
+        np.copyto(self.cmd_accdec, accdec)
+        np.copyto(self.cmd_vel, vel)
+        # direction of the last command motion: the sign of Cmd.Vel where it is not 0
+        np.sign(vel, out=w)
+        np.copyto(self.last_dir, w, where=w != 0.0, casting="unsafe")
         self.supervise()
         if self._scheduled:
             # started during this stage (a buffered instruction taking over, an error stop): from the next period
@@ -639,21 +652,33 @@ class MotionModule:
 
     # ------------------------------------------------------------------ stage 5: outputs
     def outputs(self) -> None:
+        """Stage 5. The target position every period; controlword, modes of operation and touch probe function only
+        when what they follow changed."""
         if self.bus_rows.size:
-            rx = self.network.rx  # type: ignore[union-attr]
+            net = self.network
+            rx = net.rx  # type: ignore[union-attr]
             rows, sl = self._rows_sel, self._sl_sel
-            count = np.rint((self.cmd_pos[rows] - self.pos_offset[rows]) * self.ppu[rows]).astype(np.int64)
-            rx["target_position"][sl] = count.astype(np.int32)
-            sw = self.network.tx["statusword"][sl] & 0x6F  # type: ignore[union-attr]
-            # servo ON: Shutdown → Switch on → Enable operation as the drive reports each state; OFF: Shutdown
-            cw = _CW_FOR_STATE[sw] * self.servo_req[rows]
-            cw[cw == 0] = CW_SHUTDOWN
-            if self._fault_resets:
-                # MC_Reset: CiA402 fault reset (rising edges of controlword bit 7, repeated every other period)
-                req = self.fault_reset_req[rows]
-                cw = np.where(req, CW_FAULT_RESET if self.cycle % 2 else 0, cw)
-                self._fault_resets = bool(self.fault_reset_req.any())
-            rx["controlword"][sl] = cw
+            w, i64, i32 = self._out_w, self._out_i64, self._out_i32
+            np.subtract(self.cmd_pos[rows], self.pos_offset[rows], out=w)
+            w *= self.ppu[rows]
+            np.rint(w, out=w)
+            np.copyto(i64, w, casting="unsafe")
+            np.copyto(i32, i64, casting="unsafe")  # the 32-bit object wraps
+            rx["target_position"][sl] = i32
+            sw = net.tx["statusword"][sl]  # type: ignore[union-attr]
+            key = sw.tobytes() + self.servo_req.tobytes()
+            if self._fault_resets or key != self._cw_key:
+                self._cw_key = key
+                # servo ON: Shutdown → Switch on → Enable operation as the drive reports each state; OFF: Shutdown
+                cw = _CW_FOR_STATE[sw & 0x6F] * self.servo_req[rows]
+                cw[cw == 0] = CW_SHUTDOWN
+                if self._fault_resets:
+                    # MC_Reset: CiA402 fault reset (rising edges of controlword bit 7, repeated every other period)
+                    req = self.fault_reset_req[rows]
+                    cw = np.where(req, CW_FAULT_RESET if self.cycle % 2 else 0, cw)
+                    self._fault_resets = bool(self.fault_reset_req.any())
+                    self._cw_key = None
+                rx["controlword"][sl] = cw
             if self._n_trq or self._trq_out:
                 # torque control: CST with the command torque and the velocity limit (6071h, 607Fh)
                 ta = self.trq_active[rows]
@@ -663,13 +688,18 @@ class MotionModule:
                 rx["max_profile_velocity"][sl] = np.where(ta, vlim, 0)
                 self._trq_out = bool(ta.any())
                 self._mode_check = True
-            else:
+                self._csp_sent = False
+            elif not self._csp_sent:
                 rx["modes_of_operation"][sl] = MODE_CSP
+                self._csp_sent = True
             if self.trq_lim_dirty:
                 self.trq_lim_dirty = False
                 rx["positive_torque_limit"][sl] = np.clip(np.rint(self.trq_lim_pos[rows] * 10.0), 0, 65535)
                 rx["negative_torque_limit"][sl] = np.clip(np.rint(self.trq_lim_neg[rows] * 10.0), 0, 65535)
-            rx["touch_probe_function"][sl] = self.tp_func[rows]
+            key = self.tp_func.tobytes()
+            if key != self._tp_key:
+                self._tp_key = key
+                rx["touch_probe_function"][sl] = self.tp_func[rows]
         if self.virtual_rows.size:
             v = self.virtual_rows
             on = self.servo_on[v]
