@@ -21,6 +21,8 @@ from .objects import DATA_TYPES, object_def
 RX_RANGE = (0x1600, 0x17FF)
 TX_RANGE = (0x1A00, 0x1BFF)
 DEFAULT_SM_LIMIT = 1024  # bytes, when the device description gives no maximum sync manager size
+MAX_MAPPING_ENTRIES = 254  # subindexes 1–254 of a mapping object (`PdoMappingConfig.entries`)
+MAX_ASSIGNED = 254  # subindexes 1–254 of 1C12h/1C13h (`SlavePdoConfig.rx_assign`/`tx_assign`)
 
 
 class _Strict(BaseModel):
@@ -35,14 +37,14 @@ class PdoEntryConfig(_Strict):
 
 class PdoMappingConfig(_Strict):
     index: int = Field(ge=0x1600, le=0x1BFF, description="PDO mapping object (1600h–17FFh Rx, 1A00h–1BFFh Tx)")
-    entries: list[PdoEntryConfig] = Field(default_factory=list, max_length=254)
+    entries: list[PdoEntryConfig] = Field(default_factory=list, max_length=MAX_MAPPING_ENTRIES)
 
 
 class SlavePdoConfig(_Strict):
     """What a slave exchanges: the PDO assignment (1C12h/1C13h) and the content of the assigned PDOs."""
 
-    rx_assign: list[int] = Field(default_factory=list, max_length=254, description="1C12h: RxPDOs, in order")
-    tx_assign: list[int] = Field(default_factory=list, max_length=254, description="1C13h: TxPDOs, in order")
+    rx_assign: list[int] = Field(default_factory=list, max_length=MAX_ASSIGNED, description="1C12h: RxPDOs, in order")
+    tx_assign: list[int] = Field(default_factory=list, max_length=MAX_ASSIGNED, description="1C13h: TxPDOs, in order")
     mappings: list[PdoMappingConfig] = Field(
         default_factory=list, description="Entries of the assigned PDOs (a PDO not listed has its description's)")
 
@@ -59,9 +61,6 @@ def default_pdo_config(device: DeviceDescription) -> SlavePdoConfig:
     return SlavePdoConfig(
         rx_assign=[p.index for p in rx], tx_assign=[p.index for p in tx],
         mappings=[_mapping_of(p) for p in (*rx, *tx) if len(p.entries) <= MAX_MAPPING_ENTRIES])
-
-
-MAX_MAPPING_ENTRIES = 254  # subindexes 1–254 of a mapping object (`PdoMappingConfig.entries`)
 
 
 def _default_assignment(device: DeviceDescription, pdos: list[PdoDescription], assign_object: int
@@ -82,7 +81,7 @@ def _default_assignment(device: DeviceDescription, pdos: list[PdoDescription], a
                 continue
         taken.append(p)
         mapped |= _objects_of(p)
-        if len(taken) == MAX_MAPPING_ENTRIES:
+        if len(taken) == MAX_ASSIGNED:
             break
     order = {p.index: k for k, p in enumerate(pdos)}
     return sorted(taken, key=lambda q: order[q.index])
