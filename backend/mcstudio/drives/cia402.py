@@ -287,6 +287,14 @@ class Cia402Drives:
         self.homing_timeout_s = np.full(n, 60.0)  # a homing phase that takes longer fails (bit 13)
         # internal state
         self._rx: np.ndarray | None = None
+        self._rx_src: np.ndarray | None = None
+        self._rx_bytes: tuple[np.ndarray, np.ndarray] = (np.zeros(0, np.uint8), np.zeros(0, np.uint8))
+        # work arrays of the transmission (no allocation per period)
+        self._t_vel = np.zeros(n)
+        self._t_trq = np.zeros(n)
+        self._t_fe = np.zeros(n, dtype=np.int64)
+        self._t_abs = np.zeros(n, dtype=np.int64)
+        self._any_fe_over = False
         self._opt_fields: tuple[bool, bool, bool, bool] = (False, False, False, False)
         self._prev_cw = np.zeros(n, dtype=np.uint16)
         self._demand = np.zeros(n)  # position reference of the period [pulse, mechanism frame]
@@ -386,7 +394,7 @@ class Cia402Drives:
     def _receive(self, rx: np.ndarray, online: np.ndarray) -> tuple[np.ndarray, bool]:
         """The drives' own copy of their objects: this period's values for the drives online, the last ones for
         the others."""
-        all_online = bool(online.all())
+        all_online = np.count_nonzero(online) == self.n
         if self._rx is None or self._rx.dtype != rx.dtype:
             self._rx = rx.copy()
             names = rx.dtype.names or ()
@@ -395,7 +403,9 @@ class Cia402Drives:
             return self._rx, all_online
         if all_online:
             if rx.flags.c_contiguous:
-                np.copyto(self._rx.view(np.uint8), rx.view(np.uint8))  # bytes: much cheaper than field by field
+                if rx is not self._rx_src:  # byte views of the source and the copy, made once per source
+                    self._rx_src, self._rx_bytes = rx, (rx.view(np.uint8), self._rx.view(np.uint8))
+                np.copyto(self._rx_bytes[1], self._rx_bytes[0])  # bytes: much cheaper than field by field
             else:
                 self._rx[:] = rx
         else:
@@ -417,7 +427,7 @@ class Cia402Drives:
         state = self.state
         req = r["modes_of_operation"]
         events = bool(self._pending) or not all_online or self._watch
-        if not events and self._sm_key is not None and self.main_power.all():
+        if not events and self._sm_key is not None and np.count_nonzero(self.main_power) == self.n:
             # the same controlwords (so no fault reset edge), mode requests and states as in a period that changed
             # nothing: nothing to do
             key = (cw.tobytes(), req.tobytes(), state_bytes)
@@ -783,18 +793,22 @@ class Cia402Drives:
     # ------------------------------------------------------------------ inputs
     def _sense(self, prev_pos: np.ndarray, r: np.ndarray) -> None:
         """60FDh and the touch probes after the mechanism moved from `prev_pos` to `position`; homing edges."""
+        fn = r["touch_probe_function"]
+        probing = self._probing or bool(np.count_nonzero(fn))
+        homing = bool(self._gen_idx.size) and bool(np.count_nonzero(self.homing.running))
+        if not (self._di.fitted or probing or homing):
+            return
         p1 = _f(self.position)
         p0 = _f(prev_pos)
         if self._di.fitted:
             self.digital_inputs[:] = self._di(p1)
             self._static_dirty = True
-        fn = r["touch_probe_function"]
-        if self._probing or fn.any():
+        if probing:
             self.probes.update(p0, p1, fn, self.sensors, self.home_shift if self._shifted else None)
-            self._probing = bool(fn.any())
+            self._probing = bool(np.count_nonzero(fn))
             self._static_dirty = True
         hm = self.homing
-        if self._gen_idx.size and hm.running.any():
+        if homing:
             timeout = self.homing_timeout_s / self.period_s
             for i, what, at in hm.detect(p0, p1, self.sensors, timeout):
                 if what == "home":
@@ -807,25 +821,26 @@ class Cia402Drives:
     def _supervise(self, r: np.ndarray) -> None:
         """Following error (60F4h, 6065h/6066h → 8611h), statusword mode bits, ends of ramps."""
         if self._all_csp:
-            fe = self._demand_int - self.position
-            self._fe = fe
-            over = np.abs(fe) > r["following_error_window"]
-            any_over = bool(over.any())
+            fe = np.subtract(self._demand_int, self.position, out=self._fe)
+            over = np.abs(fe, out=self._t_abs) > r["following_error_window"]
+            any_over = bool(np.count_nonzero(over))
             if any_over or self._fe_counting:
                 self._following_error(over, r)
             if any_over:
                 self._sw_mode = np.where(over, SW_BIT12 | SW_BIT13, SW_BIT12).astype(np.uint16)
-            elif self._fe_over.any():
+            elif self._any_fe_over:
                 self._sw_mode = np.full(self.n, SW_BIT12, dtype=np.uint16)
             self._fe_over = over
+            self._any_fe_over = any_over
             return
         pos = self._poskind
         fe = np.where(pos, np.rint(self._demand).astype(np.int64) - self.position, 0)
-        self._fe = fe
+        self._fe[:] = fe
         over = pos & (np.abs(fe) > r["following_error_window"])
         if over.any() or self._fe_counting:
             self._following_error(over, r)
         self._fe_over = over
+        self._any_fe_over = bool(over.any())
         st, mode = self.state, self.mode_display
         oe = st == _OE
         sw = np.zeros(self.n, dtype=np.uint16)
@@ -895,19 +910,24 @@ class Cia402Drives:
             self._sw_mode_last = self._sw_mode
         if plant.any_limited:
             sw = sw | limited * np.uint16(SW_INTERNAL_LIMIT)
-        if self.warning.any():
+        if np.count_nonzero(self.warning):
             sw = sw | self.warning * np.uint16(SW_WARNING)
         tx["statusword"] = sw
         shifted = self._shifted
         demand = self._demand_int if self._all_csp else np.rint(self._demand).astype(np.int64)
         tx["position_demand"] = demand + self.home_shift if shifted else demand
         tx["position_actual"] = self.position + self.home_shift if shifted else self.position
-        tx["velocity_actual"] = _saturate(np.rint((self.position - prev_pos) * (1.0 / self.period_s)), 2**31)
-        torque = _saturate(np.rint(plant.torque), 2**15)
+        v = self._t_vel
+        np.subtract(self.position, prev_pos, out=v, casting="unsafe")
+        v *= 1.0 / self.period_s
+        np.rint(v, out=v)
+        tx["velocity_actual"] = np.clip(v, -2**31, 2**31 - 1, out=v)  # (the object's range)
+        torque = np.rint(plant.torque, out=self._t_trq)
+        np.clip(torque, -2**15, 2**15 - 1, out=torque)
         tx["torque_actual"] = torque
         tx["torque_demand"] = torque if plant.demand_torque is plant.torque else \
             _saturate(np.rint(plant.demand_torque), 2**15)
-        tx["following_error_actual"] = _saturate(self._fe, 2**31)
+        tx["following_error_actual"] = np.clip(self._fe, -2**31, 2**31 - 1, out=self._t_fe)
         if self._static_dirty or tx is not self._last_tx:
             # fields that change only with events (faults, modes, sensors, latches)
             self._static_dirty = False
