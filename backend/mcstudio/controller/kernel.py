@@ -152,6 +152,8 @@ class Controller:
         self.skip_settled = True
         self._next_id = 1
         self._view_cache: dict[int, tuple[dict[str, Any], dict[str, Any], FBView]] = {}
+        self._program_version = 0  # instances added or deleted (the snapshot then looks at every instance)
+        self._snapshot_program = -1
         self.snapshot: Snapshot = self._make_snapshot()
         self.events.add(cycle=0, time_s=0.0, source="controller", code="00000000", level="information",
                         message=f"project '{project.name}' loaded: {len(self.mc.axes)} axes, "
@@ -177,6 +179,7 @@ class Controller:
         if lease_s is not None:
             entry.lease_deadline = self.clock() + lease_s
         self.program[fb.id] = entry
+        self._program_version += 1
         if lease_s is not None:
             self._leased[fb.id] = entry
         self._calls = None
@@ -210,6 +213,7 @@ class Controller:
 
     def delete_fb(self, fb_id: int) -> None:
         entry = self.program.pop(fb_id, None)
+        self._program_version += 1
         self._leased.pop(fb_id, None)
         self._calls = None
         if entry is None:
@@ -297,9 +301,17 @@ class Controller:
     def _make_snapshot(self) -> Snapshot:
         # an instance's view is rebuilt only when its raw inputs or outputs changed since the last publication
         cache = self._view_cache
+        touched, self.mc.fb_touched = self.mc.fb_touched, set()
+        # an instance asleep since the last publication (not woken, not put to sleep since) has not changed
+        prev = getattr(self, "snapshot", None)
+        skip = prev is not None and self._snapshot_program == self._program_version
+        self._snapshot_program = self._program_version
         fbs = {}
         for fid, e in self.program.items():
             fb = e.fb
+            if skip and fb._asleep and fid not in touched:
+                fbs[fid] = prev.fbs[fid]  # type: ignore[union-attr]
+                continue
             hit = cache.get(fid)
             if hit is not None and hit[0] == fb.inp and hit[1] == fb.out and hit[2].lease_s == e.lease_s:
                 fbs[fid] = hit[2]

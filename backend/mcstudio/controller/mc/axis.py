@@ -561,11 +561,14 @@ class Axis(AxisPlanning):
         self.homed = True
 
     # ------------------------------------------------------------------ _sAXIS_REF
-    def capture(self) -> tuple[int, int, int, bool, bool, bool]:
-        """Discrete part of the axis variable, captured by the kernel thread when a snapshot is published."""
-        busy = self.current is not None and self.current.status in (JobStatus.STARTING, JobStatus.ACTIVE)
-        idle = not busy and not self.in_pos_waiting
-        return (int(self.state), self.error_code, self.obsr_code, self.homed, self.in_pos_waiting, idle)
+    def capture(self, state: int) -> tuple[int, int, int, bool, bool, bool]:
+        """Discrete part of the axis variable (`state`: its state as an int), captured by the kernel thread when a
+        snapshot is published."""
+        cur = self.current
+        busy = cur is not None and (cur.status == JobStatus.STARTING or cur.status == JobStatus.ACTIVE)
+        wait = self.in_pos_waiting
+        obs = self.observations
+        return (state, self.error_code, next(iter(obs)) if obs else 0, self._homed, wait, not busy and not wait)
 
 
 def round_tenth(x: float) -> float:

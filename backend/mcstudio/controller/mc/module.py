@@ -129,6 +129,7 @@ class MotionModule:
         self._scheduled: dict[int, Axis] = {}  # jobs accepted (or changed) this period, planned in its motion stage
         self.changed: list[Any] = []  # jobs whose status changed this period (their instances are refreshed)
         self.homing_axes: dict[int, Axis] = {}
+        self.fb_touched: set[int] = set()  # instances woken or put to sleep since the last snapshot
         self.watchers: dict[int, Any] = {}  # instances watching a latch / trigger each period (by instance id)
         self.common_reset_generation = 0  # ResetMCError: releases instances whose error has the MC common source
         self._inv_mask = np.zeros(n, dtype=np.uint32)  # 60FDh bits whose logic is inverted (axis parameters)
@@ -290,7 +291,7 @@ class MotionModule:
     def wrapped(self, x: np.ndarray) -> np.ndarray:
         """Positions as reported (a copy): on the ring counter for Rotary Mode axes."""
         out = x.copy()
-        if not self.rotary.any():
+        if not np.count_nonzero(self.rotary):
             return out
         r = self.rotary
         out[r] = self.mod_min[r] + np.mod(x[r] - self.mod_min[r], self.mod_len[r])
@@ -718,7 +719,7 @@ class MotionModule:
             "cmd_trq": np.where(self.trq_active, self.trq_cmd, self.act_trq),  # Cmd.Trq = Act.Trq outside
             "act_trq": self.act_trq.copy(),
             "drv": self.drv.copy(),
-            "discrete": tuple(a.capture() for a in self.axes),
+            "discrete": tuple(a.capture(st) for a, st in zip(self.axes, self.state.tolist(), strict=True)),
         }
 
 

@@ -258,12 +258,15 @@ class FunctionBlock:
     def wake(self) -> None:
         """Call this instance again from the next call of the program on (something its call reads changed)."""
         self.__dict__["_asleep"] = False
+        self.mc.fb_touched.add(self.id)
 
     def sleep(self) -> None:
         """The instance's call would change nothing until one of its inputs, its job or its axis changes: the kernel
         skips it until `wake`. Only instances whose wake-up sources are all hooked may sleep (ExecuteFB without per-call
-        hooks, MC_Power)."""
+        hooks, MC_Power). `fb_touched` tells the snapshot which sleeping instances may have changed since it was
+        last published."""
         self.__dict__["_asleep"] = True
+        self.mc.fb_touched.add(self.id)
 
     def on_delete(self) -> None:
         """The instance is removed from the program (release what it holds, e.g. a latch)."""
@@ -399,10 +402,10 @@ class ExecuteFB(FunctionBlock):
             job = d["job"]
             if job is None:
                 if d["_steady"]:
-                    d["_asleep"] = True
+                    self.sleep()
                     return
             elif job.status is d["_seen_status"] and job.in_velocity == d["_seen_inv"]:
-                d["_asleep"] = True  # woken by a change of the job's status or InVelocity
+                self.sleep()  # woken by a change of the job's status or InVelocity
                 return
         edge = exe and not self._prev_exe
         d["_prev_exe"] = exe  # (hot path: bypasses FunctionBlock.__setattr__)

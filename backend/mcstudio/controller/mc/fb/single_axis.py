@@ -102,7 +102,7 @@ class MC_Power(FunctionBlock):
                 o["Status"] = bool(axis.m.servo_on[axis.i])
                 # nothing changes until Enable, the axis's servo state, request, owner or use changes: sleep (the
                 # axis wakes its sleepers on each of those)
-                d["_asleep"] = True
+                self.sleep()
                 axis.power_sleepers.append(self)
                 return
         d["_fast"] = None
