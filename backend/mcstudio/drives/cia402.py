@@ -921,13 +921,13 @@ class Cia402Drives:
         np.subtract(self.position, prev_pos, out=v, casting="unsafe")
         v *= 1.0 / self.period_s
         np.rint(v, out=v)
-        tx["velocity_actual"] = np.clip(v, -2**31, 2**31 - 1, out=v)  # (the object's range)
-        torque = np.rint(plant.torque, out=self._t_trq)
-        np.clip(torque, -2**15, 2**15 - 1, out=torque)
+        tx["velocity_actual"] = _saturate(v, 2**31)  # (the object's range)
+        torque = _saturate(np.rint(plant.torque, out=self._t_trq), 2**15)
         tx["torque_actual"] = torque
         tx["torque_demand"] = torque if plant.demand_torque is plant.torque else \
             _saturate(np.rint(plant.demand_torque), 2**15)
-        tx["following_error_actual"] = np.clip(self._fe, -2**31, 2**31 - 1, out=self._t_fe)
+        np.copyto(self._t_fe, self._fe)
+        tx["following_error_actual"] = _saturate(self._t_fe, 2**31)
         if self._static_dirty or tx is not self._last_tx:
             # fields that change only with events (faults, modes, sensors, latches)
             self._static_dirty = False
@@ -948,6 +948,7 @@ class Cia402Drives:
 
 
 def _saturate(x: np.ndarray, limit: int) -> np.ndarray:
-    """Clamp to [−limit, limit − 1] (the range of the object's integer type)."""
-    x = np.minimum(x, limit - 1)
+    """Clamp x in place to [−limit, limit − 1] (the range of the object's integer type); returns x. (Two ufunc calls:
+    much cheaper than np.clip's wrapper on small arrays.)"""
+    np.minimum(x, limit - 1, out=x)
     return np.maximum(x, -limit, out=x)
