@@ -556,12 +556,15 @@ class MotionModule:
         profiles = self.profiles
         if profiles.n_active:
             active = profiles.active
-            pos, vel, acc, fin = profiles.evaluate(cycle, T)
-            np.copyto(self.cmd_pos, pos, where=active)
-            np.copyto(self.prof_vel, vel, where=active)
-            np.copyto(self.prof_acc, acc, where=active)
+            if profiles.n_active == self.n:  # every axis runs a profile: evaluate straight into the command values
+                _, _, _, fin = profiles.evaluate(cycle, T, (self.cmd_pos, self.prof_vel, self.prof_acc))
+            else:
+                pos, vel, acc, fin = profiles.evaluate(cycle, T)
+                np.copyto(self.cmd_pos, pos, where=active)
+                np.copyto(self.prof_vel, vel, where=active)
+                np.copyto(self.prof_acc, acc, where=active)
+                fin &= active
             fin &= self.notify
-            fin &= active
             report = np.flatnonzero(fin) if np.count_nonzero(fin) else ()
             for i in report:
                 axis = self.axes[i]

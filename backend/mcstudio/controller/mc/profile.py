@@ -309,9 +309,10 @@ class ProfileTable:
             self.active[i] = False
             self.n_active -= 1
 
-    def evaluate(self, cycle: int, period_s: float) -> tuple[np.ndarray, ...]:
+    def evaluate(self, cycle: int, period_s: float, out: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+                 ) -> tuple[np.ndarray, ...]:
         """Position, velocity, acceleration and 'finished' flags of every axis at the end of `cycle` (meaningful
-        where `active`; the arrays are reused by the next call).
+        where `active`; the arrays are reused by the next call, or are `out` when given).
 
         A profile loaded at cycle c0 has advanced one period at the end of c0 (the instruction's first command value
         appears in the period in which it was accepted; its Active output follows one period later).
@@ -325,7 +326,7 @@ class ProfileTable:
                 self._enter(i, max(int(np.searchsorted(self.t[i], t[i], side="right")) - 1, 0))
         np.subtract(t, self.c_t0, out=tau)
         # position p + τ(v + τ(a/2 + τ·j/6)), velocity v + τ(a + τ·j/2), acceleration a + τ·j
-        pos, vel, acc = self.pos, self.vel, self.acc
+        pos, vel, acc = out if out is not None else (self.pos, self.vel, self.acc)
         np.multiply(tau, self.c_j6, out=w)
         w += self.c_a2
         w *= tau
