@@ -45,3 +45,10 @@ export type EsiFile = S["EsiFile"];
 export type FaultIn = S["FaultIn"];
 export type FaultKind = FaultIn["kind"];
 export type FaultOut = S["FaultOut"];
+// EtherCAT network configuration (PUT /api/v1/ethercat; the project's `ethercat` section)
+export type Project = S["Project"];
+export type EtherCATConfig = S["EtherCATConfig"];
+export type EtherCATMasterConfig = S["EtherCATMasterConfig"];
+export type EtherCATSlaveConfig = S["EtherCATSlaveConfig"];
+export type StartupSdo = S["StartupSdo"];
+export type SlaveEmulation = S["SlaveEmulation"];

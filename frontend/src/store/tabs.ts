@@ -51,6 +51,21 @@ export function openPdoTab(node: number): void {
   openTab(pdoTabKey(node));
 }
 
+/** A slave got another node address (its PDO map tab follows it) or left the network (`to` null: the tab closes). */
+export function retargetPdoTab(from: number, to: number | null): void {
+  const key = pdoTabKey(from);
+  if (to === null) {
+    closeTab(key);
+    return;
+  }
+  const next = pdoTabKey(to);
+  tabsStore.set((s) => {
+    if (!s.open.includes(key)) return s;
+    const open = s.open.filter((k) => k !== next).map((k) => (k === key ? next : k));
+    return { open, active: s.active === key ? next : s.active };
+  });
+}
+
 export function closeTab(key: string): void {
   tabsStore.set((s) => {
     const i = s.open.indexOf(key);

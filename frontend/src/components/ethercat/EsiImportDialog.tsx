@@ -1,5 +1,5 @@
 import { Alert, Badge, Button, FileInput, Group, List, Modal, Stack, Table, Text } from "@mantine/core";
-import { IconAlertTriangle, IconFileImport, IconFileTypeXml } from "@tabler/icons-react";
+import { IconAlertTriangle, IconFileImport, IconFileTypeXml, IconPlus } from "@tabler/icons-react";
 import { type ComponentPropsWithoutRef, useState } from "react";
 import { ApiError, api, unwrap } from "../../api/client";
 import type { EsiFile } from "../../api/types";
@@ -30,7 +30,7 @@ function errorText(err: unknown): string {
   return err instanceof Error ? err.message : String(err);
 }
 
-function Imported({ esi }: { esi: EsiFile }) {
+function Imported({ esi, onAdd }: { esi: EsiFile; onAdd?: (device: string) => void }) {
   return (
     <Stack gap={6} data-testid="esi-result">
       <Text size="sm">
@@ -46,6 +46,7 @@ function Imported({ esi }: { esi: EsiFile }) {
             <Table.Th>Profile</Table.Th>
             <Table.Th className="num">RxPDOs</Table.Th>
             <Table.Th className="num">TxPDOs</Table.Th>
+            {onAdd && <Table.Th />}
           </Table.Tr>
         </Table.Thead>
         <Table.Tbody>
@@ -60,6 +61,14 @@ function Imported({ esi }: { esi: EsiFile }) {
               <Table.Td>{d.profile != null ? `CiA ${d.profile}` : "—"}</Table.Td>
               <Table.Td className="num">{d.rx_pdos?.length ?? 0}</Table.Td>
               <Table.Td className="num">{d.tx_pdos?.length ?? 0}</Table.Td>
+              {onAdd && (
+                <Table.Td>
+                  <Button size="compact-xs" variant="light" leftSection={<IconPlus size={12} />} onClick={() => onAdd(d.id)}
+                    data-testid={`esi-add-${d.id}`}>
+                    Add to network…
+                  </Button>
+                </Table.Td>
+              )}
             </Table.Tr>
           ))}
         </Table.Tbody>
@@ -76,8 +85,13 @@ function Imported({ esi }: { esi: EsiFile }) {
   );
 }
 
-/** Import an ESI file: every device it describes joins the library (and the file the project's esi/ folder). */
-export function EsiImportDialog({ opened, onClose }: { opened: boolean; onClose: () => void }) {
+/** Import an ESI file: every device it describes joins the library (and the file the project's esi/ folder).
+ * With `onAdd`, each imported device has a button to add it to the network as a new slave. */
+export function EsiImportDialog({ opened, onClose, onAdd }: {
+  opened: boolean;
+  onClose: () => void;
+  onAdd?: (device: string) => void;
+}) {
   const [file, setFile] = useState<File | null>(null);
   const [busy, setBusy] = useState(false);
   const [error, setError] = useState<string | null>(null);
@@ -144,7 +158,14 @@ export function EsiImportDialog({ opened, onClose }: { opened: boolean; onClose:
             <Text size="xs" style={{ whiteSpace: "pre-wrap" }}>{error}</Text>
           </Alert>
         )}
-        {result && <Imported esi={result} />}
+        {result && (
+          <Imported esi={result} onAdd={onAdd && ((id) => {
+            setFile(null);
+            setError(null);
+            setResult(null);
+            onAdd(id);
+          })} />
+        )}
         <Group justify="flex-end">
           {result && <Badge color="green" variant="light" style={{ textTransform: "none" }}>Imported</Badge>}
           <Button variant="default" onClick={close} data-testid="esi-close">

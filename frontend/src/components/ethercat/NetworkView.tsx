@@ -1,17 +1,33 @@
 import { Box, Button, Center, Group, Loader, Stack, Text, Tooltip } from "@mantine/core";
-import { IconBooks, IconFileImport, IconNetwork, IconRefresh } from "@tabler/icons-react";
-import { useState } from "react";
-import { loadEthercat, useEthercat, useEthercatPoll } from "../../store/ethercat";
+import { IconBooks, IconFileImport, IconNetwork, IconPlus, IconRefresh } from "@tabler/icons-react";
+import { useEffect, useState } from "react";
+import { loadEthercat, useDevices, useEthercat, useEthercatPoll } from "../../store/ethercat";
+import { useNetworkConfig } from "../../store/network";
+import { pruneSlaveEditors } from "../../store/networkEditor";
 import { openDevicesTab } from "../../store/tabs";
+import { AddSlaveDialog } from "./AddSlaveDialog";
 import { EsiImportDialog } from "./EsiImportDialog";
 import { MasterBox } from "./MasterBox";
+import { RemoveSlaveDialog } from "./RemoveSlaveDialog";
 import { SlaveCard } from "./SlaveCard";
 
-/** The EtherCAT network view: the master and its slaves in wiring order, polled twice a second while visible. */
+/**
+ * The EtherCAT network view and editor: the master and its slaves in wiring order (polled twice a second while
+ * visible); master settings, adding, configuring and removing slaves, each edit applied with PUT /api/v1/ethercat.
+ */
 export function NetworkView() {
   useEthercatPoll(500);
+  useDevices();
+  const config = useNetworkConfig();
   const { status, data, error } = useEthercat();
   const [importing, setImporting] = useState(false);
+  const [adding, setAdding] = useState<{ device: string | null } | null>(null);
+  const [removing, setRemoving] = useState<number | null>(null);
+
+  const nodes = config.data?.config.slaves.map((s) => s.node_address).join(",");
+  useEffect(() => {
+    if (nodes !== undefined) pruneSlaveEditors(nodes ? nodes.split(",").map(Number) : []);
+  }, [nodes]);
 
   return (
     <Box style={{ height: "100%", display: "flex", flexDirection: "column", minHeight: 0 }} data-testid="ecat-network">
@@ -30,6 +46,12 @@ export function NetworkView() {
           </Stack>
         </Group>
         <Group gap={8} wrap="nowrap">
+          <Tooltip label="Add a slave from the device library (built-in or imported ESI devices)" openDelay={300}>
+            <Button leftSection={<IconPlus size={14} />} onClick={() => setAdding({ device: null })}
+              disabled={config.status !== "ready"} data-testid="ecat-add-slave">
+              Add slave…
+            </Button>
+          </Tooltip>
           <Button variant="default" leftSection={<IconFileImport size={14} />} onClick={() => setImporting(true)}
             data-testid="ecat-import-esi">
             Import ESI…
@@ -66,12 +88,19 @@ export function NetworkView() {
               </Text>
             )}
             {data.slaves.map((s) => (
-              <SlaveCard key={s.node_address} slave={s} />
+              <SlaveCard key={s.node_address} slave={s} onRemove={setRemoving} />
             ))}
           </div>
         )}
       </div>
-      <EsiImportDialog opened={importing} onClose={() => setImporting(false)} />
+      <EsiImportDialog opened={importing} onClose={() => setImporting(false)}
+        onAdd={(device) => {
+          setImporting(false);
+          setAdding({ device });
+        }} />
+      <AddSlaveDialog opened={adding !== null && !importing} initialDevice={adding?.device ?? null}
+        onClose={() => setAdding(null)} onImport={() => setImporting(true)} />
+      <RemoveSlaveDialog node={removing} onClose={() => setRemoving(null)} />
     </Box>
   );
 }

@@ -1,12 +1,16 @@
-import { Anchor, Badge, Button, Group, Text, Tooltip } from "@mantine/core";
-import { IconAlertTriangle, IconTableOptions } from "@tabler/icons-react";
+import { ActionIcon, Anchor, Badge, Button, Divider, Group, Text, Tooltip } from "@mantine/core";
+import { IconAlertTriangle, IconSettings, IconTableOptions, IconTrash } from "@tabler/icons-react";
 import type { ReactNode } from "react";
 import type { SlaveOut } from "../../api/types";
 import { hexH } from "../../lib/hex";
+import { useStore } from "../../store/createStore";
+import { networkConfigStore } from "../../store/network";
+import { slaveEditorStore, toggleSlaveEditor } from "../../store/networkEditor";
 import { openAxisTab, openPdoTab } from "../../store/tabs";
 import { Led } from "../common/Led";
 import { EsmBadge, esmColor } from "./EsmBadge";
 import { FaultActions } from "./FaultActions";
+import { SlaveConfigPanel } from "./SlaveConfigPanel";
 
 function Field({ label, children, testId }: { label: ReactNode; children: ReactNode; testId?: string }) {
   return (
@@ -40,8 +44,37 @@ function DriveFields({ slave }: { slave: SlaveOut }) {
   );
 }
 
-/** One slave of the network, in wiring order: identity, state, the axis it drives, and the commissioning drills. */
-export function SlaveCard({ slave }: { slave: SlaveOut }) {
+/** Configure (opens the slave's configuration under its identity) and Remove. */
+function EditActions({ slave, onRemove }: { slave: SlaveOut; onRemove: (node: number) => void }) {
+  const node = slave.node_address;
+  const cfg = useStore(networkConfigStore, (s) => s.data?.config.slaves.find((x) => x.node_address === node));
+  const position = useStore(networkConfigStore, (s) => s.data?.config.slaves.findIndex((x) => x.node_address === node) ?? -1);
+  const open = useStore(slaveEditorStore, (s) => s[node]?.open ?? false);
+  const dirty = useStore(slaveEditorStore, (s) => s[node]?.dirty ?? false);
+  return (
+    <Group gap={2} wrap="nowrap">
+      <Tooltip label={open ? "Close the configuration" : "Configure: name, node address, start-up parameters, drill"}
+        openDelay={300}>
+        <ActionIcon variant={open ? "light" : "subtle"} color={dirty ? "orange" : "gray"} size="md"
+          disabled={!cfg || position < 0} onClick={() => cfg && toggleSlaveEditor(cfg, position)}
+          aria-label={`Configure ${slave.name}`} aria-expanded={open} data-testid={`ecat-edit-${node}`}
+          data-dirty={dirty ? "true" : "false"}>
+          <IconSettings size={16} />
+        </ActionIcon>
+      </Tooltip>
+      <Tooltip label="Remove the slave from the network" openDelay={300}>
+        <ActionIcon variant="subtle" color="red" size="md" onClick={() => onRemove(node)}
+          aria-label={`Remove ${slave.name}`} data-testid={`ecat-remove-${node}`}>
+          <IconTrash size={16} />
+        </ActionIcon>
+      </Tooltip>
+    </Group>
+  );
+}
+
+/** One slave of the network, in wiring order: identity, state, the axis it drives, its configuration and the
+ * commissioning drills. */
+export function SlaveCard({ slave, onRemove }: { slave: SlaveOut; onRemove: (node: number) => void }) {
   const node = slave.node_address;
   return (
     <div className="ecat-slave" data-testid={`ecat-slave-${node}`} data-state={slave.state}>
@@ -67,6 +100,8 @@ export function SlaveCard({ slave }: { slave: SlaveOut }) {
             <Led label="PD" on={slave.pd_ok} testId={`ecat-pd-${node}`}
               title="Process data communication established" />
             <EsmBadge state={slave.state} testId={`ecat-state-${node}`} />
+            <Divider orientation="vertical" />
+            <EditActions slave={slave} onRemove={onRemove} />
           </Group>
         </div>
         <div className="ecat-slave-info">
@@ -109,6 +144,7 @@ export function SlaveCard({ slave }: { slave: SlaveOut }) {
             <Text size="xs">{slave.error}</Text>
           </Group>
         )}
+        <SlaveConfigPanel slave={slave} />
         <FaultActions slave={slave} />
       </div>
     </div>
