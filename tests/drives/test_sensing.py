@@ -48,3 +48,30 @@ def test_planned_digital_inputs_equal_the_full_computation() -> None:
     for _ in range(20):
         p = rng.uniform(-120, 120, 50)
         assert np.array_equal(di(p), digital_inputs(p, s))
+
+
+def test_cached_intervals_follow_moving_positions_exactly() -> None:
+    """The inputs are recomputed only for devices that left the interval between their sensor edges; along random
+    walks with small steps, jumps and positions exactly on edges they equal the full computation every period."""
+    rng = np.random.default_rng(11)
+    s = SensorLayout(40)
+    s.pos_limit[:30] = rng.uniform(20, 60, 30)
+    s.neg_limit[5:35] = rng.uniform(-60, -20, 30)
+    s.prox[::2] = np.sort(rng.uniform(-30, 30, (20, 2)), axis=1)
+    s.ext1[1::4] = np.sort(rng.uniform(-30, 30, (10, 2)), axis=1)
+    di = DigitalInputs(s)
+    p = rng.uniform(-70, 70, 40)
+    changes = 0
+    for k in range(3000):
+        p = p + rng.normal(0.0, 0.8, 40)
+        if k % 97 == 0:
+            p[rng.integers(0, 40)] = rng.uniform(-80, 80)
+        if k % 131 == 0:  # exactly on an edge, and back off it
+            p[0] = s.pos_limit[0]
+            p[2] = s.prox[2, 0]
+        before = di._di.copy()
+        got = di(p).copy()
+        assert np.array_equal(got, digital_inputs(p, s)), k
+        assert di.changed or np.array_equal(before, got), f"{k}: inputs changed without `changed`"
+        changes += int(di.changed)
+    assert changes > 50, "the walk really crossed sensors"

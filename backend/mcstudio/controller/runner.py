@@ -18,6 +18,7 @@ import logging
 import sys
 import threading
 import time
+from array import array
 from collections import deque
 from collections.abc import Callable
 from concurrent.futures import Future
@@ -43,6 +44,8 @@ class RunnerStatus:
     mode: Mode
     rtf: float
     overruns: int
+    cycle_time_avg_s: float = 0.0  # kernel compute time per period (last RTF window, running modes)
+    cycle_time_max_s: float = 0.0
 
 
 class Runner:
@@ -61,6 +64,14 @@ class Runner:
         self._rtf_mark: tuple[float, float] = (time.perf_counter(), controller.time_s)
         self._last_publish = 0.0
         self._listeners: list[Callable[[Controller], None]] = []
+        # kernel load: compute time of the cycles run since the last RTF window (the task monitor of the status)
+        self.cycle_time_avg_s = 0.0
+        self.cycle_time_max_s = 0.0
+        self._load_sum = 0.0
+        self._load_max = 0.0
+        self._load_n = 0
+        # optional timing log of realtime cycles for benchmarks: (ideal period start, compute start, compute end)
+        self.timing_log: array[float] | None = None
 
     # ------------------------------------------------------------------ public (any thread)
     @property
@@ -76,7 +87,9 @@ class Runner:
         return self._mode
 
     def status(self) -> RunnerStatus:
-        return RunnerStatus(self._mode, self.rtf if self._mode != "paused" else 0.0, self.overruns)
+        running = self._mode != "paused"
+        return RunnerStatus(self._mode, self.rtf if running else 0.0, self.overruns,
+                            self.cycle_time_avg_s if running else 0.0, self.cycle_time_max_s if running else 0.0)
 
     def start(self) -> None:
         # Python switches threads every 5 ms by default; the kernel thread must get the GIL back within a period.
@@ -186,6 +199,10 @@ class Runner:
             sim = self._controller.time_s
             self.rtf = (sim - sim0) / (now - t0)
             self._rtf_mark = (now, sim)
+            if self._load_n:
+                self.cycle_time_avg_s = self._load_sum / self._load_n
+                self.cycle_time_max_s = self._load_max
+                self._load_sum, self._load_max, self._load_n = 0.0, 0.0, 0
 
     def _loop(self) -> None:
         while True:
@@ -204,13 +221,19 @@ class Runner:
                         if not self._queue and not self._stop:
                             self._wake.wait(timeout=0.1)
                 elif mode == "fast":
-                    end = time.perf_counter() + FAST_SLICE_S
+                    start = time.perf_counter()
+                    end = start + FAST_SLICE_S
                     ctrl.check_leases()
                     ctrl.run_cycle()
                     self._release_after_cycle()
-                    while time.perf_counter() < end:
+                    n = 1
+                    while (now := time.perf_counter()) < end:
                         ctrl.check_leases()
                         ctrl.run_cycle()
+                        n += 1
+                    self._load_sum += now - start
+                    self._load_n += n
+                    self._load_max = max(self._load_max, (now - start) / n)
                     self._publish()
                     self._update_rtf()
                     # Let the API and WebSocket threads run: a busy kernel thread would otherwise starve them of
@@ -244,10 +267,19 @@ class Runner:
             self.overruns += skipped
             self._rt_anchor = (now, ctrl.cycle)
             begin = now
+        start = time.perf_counter()
         ctrl.check_leases()
         ctrl.run_cycle()
-        if time.perf_counter() > begin + period:
+        done = time.perf_counter()
+        if done > begin + period:
             self.overruns += 1
+        took = done - start
+        self._load_sum += took
+        self._load_n += 1
+        if took > self._load_max:
+            self._load_max = took
+        if self.timing_log is not None:
+            self.timing_log.extend((begin, start, done))
         self._release_after_cycle()
         self._publish()
         self._update_rtf()

@@ -801,8 +801,10 @@ class Cia402Drives:
         p1 = _f(self.position)
         p0 = _f(prev_pos)
         if self._di.fitted:
-            self.digital_inputs[:] = self._di(p1)
-            self._static_dirty = True
+            di = self._di(p1)
+            if self._di.changed:
+                self.digital_inputs[:] = di
+                self._static_dirty = True
         if probing:
             self.probes.update(p0, p1, fn, self.sensors, self.home_shift if self._shifted else None)
             self._probing = bool(np.count_nonzero(fn))

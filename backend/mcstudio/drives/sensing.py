@@ -82,8 +82,11 @@ def in_zone(p: np.ndarray, zone: np.ndarray) -> np.ndarray:
 class DigitalInputs:
     """60FDh of N devices from their positions, computing only the sensors that are fitted somewhere.
 
-    Which sensors are fitted is taken from the layout when this object is made; call `refresh` after changing the
-    layout's values in place (assigning a new layout to a drive's `sensors` does it)."""
+    Every input is constant on the open intervals between consecutive sensor edges, so each device keeps the interval
+    its position is in (`lo` < p < `hi`) with the inputs there; a period recomputes only the devices that left their
+    interval (`changed` tells whether any input changed). Which sensors are fitted is taken from the layout when this
+    object is made; call `refresh` after changing the layout's values in place (assigning a new layout to a drive's
+    `sensors` does it)."""
 
     def __init__(self, sensors: SensorLayout) -> None:
         self.sensors = sensors
@@ -97,9 +100,19 @@ class DigitalInputs:
                        for z, bit in ((s.prox, DI_HOME_SWITCH), (s.ext1, DI_EXT1), (s.ext2, DI_EXT2))
                        if bool((~np.isnan(z[:, 0]) & ~np.isnan(z[:, 1])).any())]
         self.fitted = self._pos or self._neg or bool(self._zones)
+        # every edge of every device (n, 8); nan where a sensor is not fitted
+        edges = np.column_stack([s.pos_limit, s.neg_limit, s.prox, s.ext1, s.ext2]).astype(float)
+        edges[~np.isfinite(edges)] = np.nan
+        self._edges = edges
+        n = s.n
+        self._lo = np.full(n, np.nan)  # the interval each device is in (nan: unknown → computed at the next call)
+        self._hi = np.full(n, np.nan)
+        self._di = np.zeros(n, dtype=np.uint32)
+        self._out = np.zeros(n, dtype=bool)
+        self._w = np.zeros(n, dtype=bool)
+        self.changed = True
 
-    def __call__(self, p: np.ndarray) -> np.ndarray:
-        """60FDh bits for the positions `p` [pulse]."""
+    def _compute(self, p: np.ndarray) -> np.ndarray:
         s = self.sensors
         di = np.zeros(p.shape, dtype=np.uint32)
         if self._pos:
@@ -109,6 +122,30 @@ class DigitalInputs:
         for lo, hi, bit in self._zones:
             di |= ((p >= lo) & (p <= hi)) * bit
         return di
+
+    def __call__(self, p: np.ndarray) -> np.ndarray:
+        """60FDh bits for the positions `p` [pulse] (an array this object owns: copy it to keep it)."""
+        # outside its interval (or unknown: the comparisons with nan are False)
+        out = np.greater(p, self._lo, out=self._out)
+        out &= np.less(p, self._hi, out=self._w)
+        np.logical_not(out, out=out)
+        if not np.count_nonzero(out):
+            self.changed = False
+            return self._di
+        k = np.flatnonzero(out)
+        pk = p[k]
+        new = self._compute(p)[k]  # (all rows: cheaper than indexing every layout array)
+        self.changed = bool((new != self._di[k]).any())
+        self._di[k] = new
+        e = self._edges[k]
+        with np.errstate(invalid="ignore"):
+            lo = np.where(e <= pk[:, None], e, -np.inf).max(axis=1)
+            hi = np.where(e > pk[:, None], e, np.inf).min(axis=1)
+        on_edge = lo == pk  # exactly on an edge: no open interval, recompute next time
+        lo[on_edge] = hi[on_edge] = np.nan
+        self._lo[k] = lo
+        self._hi[k] = hi
+        return self._di
 
 
 def digital_inputs(p: np.ndarray, s: SensorLayout) -> np.ndarray:
