@@ -101,6 +101,8 @@ class Mechanism:
         self._veps = np.exp(-wn * T)
         self._vq = -np.expm1(-wn * T) / wn
         self._second = second
+        self._second_idx = np.flatnonzero(second)
+        self._ideal_idx = np.flatnonzero(~second)
         self._all_ideal = not bool(second.any())
         self._all_second = bool(second.all())
         # state at the end of the period
@@ -156,6 +158,9 @@ class Mechanism:
             ideal(sl, *args)
         elif self._all_second:
             second(sl, *args)
+        elif isinstance(sl, slice) and sl == slice(None):  # every drive: the models' index arrays, made once
+            ideal(self._ideal_idx, *args)
+            second(self._second_idx, *args)
         else:
             idx = np.arange(self.n)[sl]
             is2 = self._second[idx]
