@@ -31,6 +31,10 @@ class ControllerStatus(_Model):
     project_dirty: bool = Field(False, description="The project in the controller differs from the saved file")
     epoch: int = Field(0, description="Increments each time the controller is replaced (configuration applied, "
                        "project opened, reset): cycle, instance ids and event numbers restart")
+    cycle_time_us: float = Field(0.0, description="Task monitor: mean computation time of a control period over the "
+                                 "last half second [µs] (0 while paused)")
+    cycle_time_max_us: float = Field(0.0, description="Task monitor: longest computation of a control period over the "
+                                     "last half second [µs] (fast mode: the longest mean of a 4 ms slice)")
 
 
 class ModeIn(_Model):

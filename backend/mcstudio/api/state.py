@@ -66,6 +66,8 @@ class Studio:
             project=snap.project,
             project_dirty=self.dirty,
             epoch=self.runner.epoch,
+            cycle_time_us=round(st.cycle_time_avg_s * 1e6, 1),
+            cycle_time_max_us=round(st.cycle_time_max_s * 1e6, 1),
         )
 
     @property

@@ -874,12 +874,24 @@ export interface components {
              * @default 0
              */
             epoch: number;
+            /**
+             * Cycle Time Us
+             * @description Task monitor: mean computation time of a control period over the last half second [µs] (0 while paused)
+             * @default 0
+             */
+            cycle_time_us: number;
+            /**
+             * Cycle Time Max Us
+             * @description Task monitor: longest computation of a control period over the last half second [µs] (fast mode: the longest mean of a 4 ms slice)
+             * @default 0
+             */
+            cycle_time_max_us: number;
         };
         /** DeviceDescription */
         DeviceDescription: {
             /**
              * Id
-             * @description Library key: 'builtin:…' or 'esi:<vendor>:<product>:<revision>'
+             * @description Library key: 'builtin:…' or 'esi:<vendor>:<product>:<revision>' (8 hex digits each; ':<n>' added for the n-th different device of one file with the same identity)
              */
             id: string;
             /** Name */
@@ -2041,7 +2053,10 @@ export interface components {
              * @default 0
              */
             subindex: number;
-            /** Bit Len */
+            /**
+             * Bit Len
+             * @description Width in bits; entries wider than 64 bits (strings, byte arrays, gaps) only reserve their bits in the process image
+             */
             bit_len: number;
             /**
              * Name
@@ -2535,6 +2550,18 @@ export interface components {
              * @default 0
              */
             epoch: number;
+            /**
+             * Cycle Time Us
+             * @description Task monitor: mean computation time of a control period over the last half second [µs] (0 while paused)
+             * @default 0
+             */
+            cycle_time_us: number;
+            /**
+             * Cycle Time Max Us
+             * @description Task monitor: longest computation of a control period over the last half second [µs] (fast mode: the longest mean of a 4 ms slice)
+             * @default 0
+             */
+            cycle_time_max_us: number;
             /**
              * Stepped
              * @description Cycles actually run
