@@ -286,12 +286,9 @@ export function refusalTitle(status: number | null): string {
   return `Not applied${status ? ` (${status})` : ""}`;
 }
 
-/** The text of a refusal: a 409 says that an axis is moving, whatever the details. */
-export function refusalText(status: number | null, msg: string): string {
-  if (status === 409) {
-    return `An axis is moving: stop all axes first (applying restarts the controller like a download). ${msg}`;
-  }
-  return msg;
+/** The text of a refusal (the title says what a 409 means; the controller names the moving axes). */
+export function refusalText(_status: number | null, msg: string): string {
+  return msg ? msg.charAt(0).toUpperCase() + msg.slice(1) : "";
 }
 
 // ------------------------------------------------------------------ defaults for a new slave

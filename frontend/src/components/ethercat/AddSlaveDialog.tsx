@@ -76,8 +76,8 @@ export function AddSlaveDialog({ opened, initialDevice, onClose, onImport }: {
 
   const list = slaves ?? [];
   const positions = [
-    ...list.map((s, i) => ({ value: String(i), label: `${i + 1} — before ${s.name || `node ${s.node_address}`}` })),
-    { value: String(list.length), label: `${list.length + 1} — at the end${list.length ? ` (after ${list[list.length - 1].name})` : ""}` },
+    ...list.map((s, i) => ({ value: String(i), label: `${i + 1} · before ${s.name || `node ${s.node_address}`}` })),
+    { value: String(list.length), label: `${list.length + 1} · at the end` },
   ];
 
   const nodeOk = typeof node === "number" && Number.isInteger(node) && node >= 1 && node <= 65534;
@@ -163,8 +163,8 @@ export function AddSlaveDialog({ opened, initialDevice, onClose, onImport }: {
             size="sm"
           />
           <Select
-            label="Position in the wiring order"
-            description="Where the cable reaches it"
+            label="Position"
+            description="In the wiring order"
             data={positions}
             value={position}
             onChange={(v) => v !== null && setPosition(v)}

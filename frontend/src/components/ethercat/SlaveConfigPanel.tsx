@@ -15,7 +15,7 @@ import {
   Tooltip,
 } from "@mantine/core";
 import { IconAlertTriangle, IconArrowBackUp, IconCheck, IconInfoCircle, IconTableOptions } from "@tabler/icons-react";
-import { useEffect } from "react";
+import { useEffect, useRef } from "react";
 import type { SlaveOut } from "../../api/types";
 import { hexH } from "../../lib/hex";
 import { useStore } from "../../store/createStore";
@@ -45,7 +45,7 @@ function fieldMsg(problems: readonly FieldIssue[], issues: readonly FieldIssue[]
 }
 
 function errorProps(testId: string) {
-  return { "data-testid": testId, role: "alert" } as Record<string, string>;
+  return { "data-testid": testId, role: "alert", "data-field-error": "true" } as Record<string, string>;
 }
 
 function TabLabel({ label, count, issues }: { label: string; count?: number; issues: number }) {
@@ -95,7 +95,7 @@ function General({ node, slave, ed, problems, count }: {
       <div className="ecat-field" style={{ maxWidth: 260 }}>
         <span className="ecat-field-label">Used by</span>
         <Text size="xs" fw={axis ? 600 : 400} c={axis ? "dark" : "dimmed"} data-testid={`slave-axis-${node}`}>
-          {axis ? `${axis.name} (${axisTypeText(axis.type)})` : "No axis (the process data is exchanged without one)"}
+          {axis ? `${axis.name} (${axisTypeText(axis.type)})` : "No axis"}
         </Text>
       </div>
       <div className="ecat-field" style={{ maxWidth: 300 }}>
@@ -163,21 +163,27 @@ function Drill({ node, slave, ed, problems }: { node: number; slave: SlaveOut; e
 function Problems({ node, ed, problems }: { node: number; ed: SlaveEditor; problems: FieldIssue[] }) {
   if (ed.refusal) {
     return (
-      <Alert color="orange" variant="light" py={6} mx={10} mb={6} icon={<IconAlertTriangle size={16} />}
+      <Alert color="orange" variant="light" py={6} mx={10} my={6} icon={<IconAlertTriangle size={16} />}
         title={refusalTitle(ed.refusal.status)} data-testid={`slave-refusal-${node}`}>
         <Text size="xs">{refusalText(ed.refusal.status, ed.refusal.message)}</Text>
       </Alert>
     );
   }
   if (ed.issues.length) {
+    const placed = ed.issues.filter((i) => i.field).length;
+    const others = ed.issues.filter((i) => !i.field);
     return (
-      <Alert color="red" variant="light" py={6} mx={10} mb={6} icon={<IconAlertTriangle size={16} />}
+      <Alert color="red" variant="light" py={6} mx={10} my={6} icon={<IconAlertTriangle size={16} />}
         title={`The controller refused this change (${ed.issues.length} problem${ed.issues.length === 1 ? "" : "s"})`}
         data-testid={`slave-issues-${node}`}>
         <Stack gap={2}>
-          {ed.issues.map((i, k) => (
+          {placed > 0 && (
+            <Text size="xs">
+              {placed === ed.issues.length ? "Shown" : `${placed} shown`} on the marked field{placed === 1 ? "" : "s"}.
+            </Text>
+          )}
+          {others.map((i, k) => (
             <Text size="xs" key={k} data-testid="slave-issue">
-              {i.field && <Text span ff="monospace" size="xs" fw={600}>{i.field}: </Text>}
               {i.msg}
             </Text>
           ))}
@@ -202,10 +208,20 @@ export function SlaveConfigPanel({ slave }: { slave: SlaveOut }) {
   const position = useStore(networkConfigStore, (s) => s.data?.config.slaves.findIndex((x) => x.node_address === node) ?? -1);
   const count = useStore(networkConfigStore, (s) => s.data?.config.slaves.length ?? 0);
   const ed = useStore(slaveEditorStore, (s) => s[node]);
+  const issues = ed?.issues;
+  const refusal = ed?.refusal;
+  const root = useRef<HTMLDivElement>(null);
 
   useEffect(() => {
     if (cfg && position >= 0) syncSlaveEditor(cfg, position);
   }, [cfg, position]);
+
+  // A refusal: bring the first field it concerns (else the message) into view.
+  useEffect(() => {
+    if (!issues?.length && !refusal) return;
+    const el = root.current?.querySelector("[data-field-error]") ?? root.current?.querySelector(".mantine-Alert-root");
+    el?.scrollIntoView({ block: "nearest" });
+  }, [issues, refusal]);
 
   if (!ed || !ed.open) return null;
   const problems = slaveDraftProblems(ed.draft);
@@ -217,7 +233,7 @@ export function SlaveConfigPanel({ slave }: { slave: SlaveOut }) {
   };
 
   return (
-    <div className="ecat-config" data-testid={`slave-config-${node}`} data-dirty={ed.dirty ? "true" : "false"}>
+    <div className="ecat-config" ref={root} data-testid={`slave-config-${node}`} data-dirty={ed.dirty ? "true" : "false"}>
       <Tabs value={ed.tab} onChange={(t) => t && setSlaveTab(node, t as SlaveTab)} keepMounted={false}>
         <div className="ecat-config-bar">
           <Tabs.List style={{ flex: "1 1 auto" }}>
@@ -248,7 +264,7 @@ export function SlaveConfigPanel({ slave }: { slave: SlaveOut }) {
             </Button>
             <Tooltip label={problems.length ? `Cannot apply: ${problems.map((p) => `${p.field}: ${p.msg}`).join("; ")}`
               : ed.dirty ? "Restart the controller with this configuration (all axes must be stopped)" : "Nothing changed"}
-              multiline maw={360}>
+              multiline maw={360} position="bottom-end" openDelay={300}>
               <Button size="compact-sm" leftSection={<IconCheck size={14} />} loading={ed.applying}
                 disabled={!ed.dirty || problems.length > 0} onClick={apply} data-testid={`slave-apply-${node}`}>
                 Apply

@@ -117,7 +117,8 @@ function SdoRow({ node, row, count, s, hint, errors, disabled }: RowProps) {
           <Table.Td />
           <Table.Td colSpan={8}>
             {errors.map((e, k) => (
-              <Text key={k} size="11px" c="red.7" data-testid={`sdo-error-${row}`} role="alert">
+              <Text key={k} size="11px" c="red.7" data-testid={`sdo-error-${row}`} role="alert"
+                data-field-error="true">
                 {e.field.replace(/^startup_sdos\[\d+\]\.?/, "").replace("bit_len", "size") || "line"}: {e.msg}
               </Text>
             ))}
