@@ -381,3 +381,34 @@ def test_serves_the_built_studio(tmp_path: Path, studio: Any) -> None:
         assert c.get("/api/v1/nope").status_code == 404
         assert c.get("/api/v1/health").json()["status"] == "ok"
         assert "root:" not in c.get("/../../../../etc/passwd").text
+
+
+def test_websocket_clients_subscribed_alike_share_one_encoding(client: TestClient, monkeypatch: Any) -> None:
+    """Ten clients with the same subscription: each snapshot is encoded once for all of them (the encoding runs in
+    the event loop thread, which shares the GIL with the kernel), and every client gets the same message."""
+    from mcstudio.api.routers import live
+
+    builds: list[int] = []
+    real = live.build_snapshot
+
+    def counting(studio: Any, snap: Any, sub: Any, since: int) -> dict[str, Any]:
+        builds.append(snap.cycle)
+        return real(studio, snap, sub, since)
+
+    monkeypatch.setattr(live, "build_snapshot", counting)
+    from contextlib import ExitStack
+
+    with ExitStack() as stack:
+        sockets = [stack.enter_context(client.websocket_connect(f"{API}/ws")) for _ in range(10)]
+        for ws in sockets:
+            ws.send_json({"type": "subscribe", "rate_hz": 60, "axes": None, "fbs": None, "events": False})
+            while ws.receive_json()["type"] != "subscribed":
+                pass
+        client.post(f"{API}/controller/step", json={"cycles": 7})
+        texts = []
+        for ws in sockets:
+            while (msg := ws.receive_text()) and f'"cycle": 7,' not in msg:
+                pass
+            texts.append(msg)
+    assert len(set(texts)) == 1, "every client got the same message"
+    assert builds.count(7) == 1, f"cycle 7 was encoded {builds.count(7)} times for 10 clients"

@@ -37,6 +37,7 @@ class Studio:
     viz: SceneServer | None = None
     saved_text: str = ""
     lock: threading.Lock = field(default_factory=threading.Lock)
+    ws_cache: dict[Any, Any] = field(default_factory=dict)  # encoded WebSocket messages of the latest snapshot
 
     def __post_init__(self) -> None:
         self.library: DeviceLibrary = self.runner.controller.library or DeviceLibrary(self.project_dir)

@@ -47,6 +47,23 @@ def build_snapshot(studio: Studio, snap: Snapshot, sub: WsSubscribe, since_event
     }
 
 
+def _payload_text(studio: Studio, snap: Snapshot, sub: WsSubscribe, since_event: int) -> tuple[str, int | None]:
+    """The JSON text of a snapshot message and the last event number in it. Clients that subscribed alike and are
+    at the same event share one encoding per snapshot (built in the event loop thread, which shares the GIL with
+    the kernel: ten clients must not cost ten encodings)."""
+    key = (id(snap), snap.cycle, studio.runner.epoch, tuple(sub.axes) if sub.axes is not None else None,
+           tuple(sub.fbs) if sub.fbs is not None else None, sub.events, since_event)
+    cache: dict[Any, tuple[str, int | None]] = studio.ws_cache
+    hit = cache.get(key)
+    if hit is None:
+        if len(cache) > 64 or (cache and next(iter(cache))[0] != id(snap)):
+            cache.clear()  # (only the latest snapshot's messages are kept)
+        payload = build_snapshot(studio, snap, sub, since_event)
+        hit = (json.dumps(payload), payload["events"][-1]["seq"] if payload["events"] else None)
+        cache[key] = hit
+    return hit
+
+
 @router.get("/snapshot", response_model=WsSnapshot, summary="The latest snapshot (the WebSocket's payload)")
 def get_snapshot(studio: Studio = Depends(get_studio)) -> dict[str, Any]:
     sub = WsSubscribe(type="subscribe")
@@ -103,13 +120,13 @@ async def websocket(ws: WebSocket) -> None:
             new_events = studio.controller.events.last_seq != since_event
             if snap.cycle == last_cycle and not new_events and now - last_sent < 1.0:
                 continue
-            payload = build_snapshot(studio, snap, sub, since_event)
-            if payload["events"]:
-                since_event = payload["events"][-1]["seq"]
+            text, last_seq = _payload_text(studio, snap, sub, since_event)
+            if last_seq is not None:
+                since_event = last_seq
             elif studio.controller.events.last_seq < since_event:  # log cleared
                 since_event = studio.controller.events.last_seq
             last_cycle, last_sent = snap.cycle, now
-            await ws.send_text(json.dumps(payload))
+            await ws.send_text(text)
     except (WebSocketDisconnect, RuntimeError):
         pass
     finally:
