@@ -407,7 +407,7 @@ def test_websocket_clients_subscribed_alike_share_one_encoding(client: TestClien
         client.post(f"{API}/controller/step", json={"cycles": 7})
         texts = []
         for ws in sockets:
-            while (msg := ws.receive_text()) and f'"cycle": 7,' not in msg:
+            while (msg := ws.receive_text()) and '"cycle": 7,' not in msg:
                 pass
             texts.append(msg)
     assert len(set(texts)) == 1, "every client got the same message"
