@@ -9,6 +9,7 @@ end (`Runner.timing_log`). Reported:
 * completion margin — end of the period minus completion (µs; negative = overrun), percentiles;
 * start offset — computation start minus ideal period start (µs; negative = computed early inside the jitter
   buffer, see docs/decisions.md D16), percentiles;
+* period jitter — start-to-start interval of consecutive cycles minus the period (µs), percentiles;
 * compute time per cycle (µs), percentiles, and per axis-period.
 """
 
@@ -103,6 +104,7 @@ def run(*, seconds: float, project_dir: Path = DEMO) -> dict[str, Any]:
     margin = (begin + period - t_end) * 1e6
     offset = (t_start - begin) * 1e6
     compute = (t_end - t_start) * 1e6
+    jitter = (np.diff(t_start) - period) * 1e6  # start-to-start interval minus the period
     n_axes = len(c.mc.axes)
     peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     return {
@@ -117,6 +119,7 @@ def run(*, seconds: float, project_dir: Path = DEMO) -> dict[str, Any]:
         "overruns": overruns,
         "completion_margin_us": _pct(margin),
         "start_offset_us": _pct(offset),
+        "period_jitter_us": _pct(jitter),
         "compute_us": _pct(compute),
         "us_per_axis_period": round(float(compute.mean()) / max(n_axes, 1), 3) if compute.size else 0.0,
         "peak_mb": round(peak_mb, 1),
