@@ -68,6 +68,7 @@ lint: $(VENV)/.stamp
 	$(PY) -m ruff check backend tests benchmarks
 
 bench: $(VENV)/.stamp
+	$(PY) -m pip install --quiet -e '.[bench]' || echo "pyplcopen not installed: the side-by-side row is skipped"
 	$(PY) -m benchmarks all
 
 clean:
