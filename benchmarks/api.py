@@ -202,7 +202,7 @@ def run_ws(*, clients: int, rate_hz: float, seconds: float) -> dict[str, Any]:
                 while (left := end - time.perf_counter()) > 0:
                     try:
                         msg = await asyncio.wait_for(ws.recv(), timeout=left)
-                    except asyncio.TimeoutError:
+                    except TimeoutError:
                         break
                     if '"snapshot"' in msg[:40]:
                         received[k].append(time.perf_counter())
