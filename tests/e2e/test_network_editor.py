@@ -94,7 +94,8 @@ def test_master_settings_dc_and_sync0_shift(page, server: Server) -> None:
     assert page.get_by_test_id("master-apply").is_disabled()
     page.get_by_test_id("master-sync-offset").fill("35")
     page.get_by_test_id("master-apply").click()
-    page.locator('[data-testid="ecat-dc"][data-active="true"]').filter(has_text="SYNC0 shift 35 %").wait_for(timeout=15000)
+    dc_on = page.locator('[data-testid="ecat-dc"][data-active="true"]')
+    dc_on.filter(has_text="SYNC0 shift 35 %").wait_for(timeout=15000)
     settings = _project(server)["ethercat"]["master"]
     assert settings["dc_enabled"] is True and settings["sync_offset_pct"] == 35
     for node in (1, 2, 3):
@@ -267,13 +268,12 @@ def test_slave_not_connected_stays_in_init(page, server: Server) -> None:
 
 def test_edit_while_an_axis_moves_is_refused_with_409(page, server: Server) -> None:
     _open_network(page, server)
-    s = httpx.Client(base_url=server.api(""))
-    pw = s.post("/fb", json={"type": "MC_Power", "inputs": {"Axis": "MC_Axis003", "Enable": True}})
+    pw = httpx.post(server.api("/fb"), json={"type": "MC_Power", "inputs": {"Axis": "MC_Axis003", "Enable": True}})
     assert pw.status_code == 201, pw.text
     page.wait_for_function(
         f"async () => (await (await fetch('/api/v1/fb/{pw.json()['id']}')).json()).outputs.Status === true",
         timeout=10000)
-    mv = s.post("/fb", json={"type": "MC_MoveVelocity", "inputs": {
+    mv = httpx.post(server.api("/fb"), json={"type": "MC_MoveVelocity", "inputs": {
         "Axis": "MC_Axis003", "Execute": True, "Velocity": 10, "Acceleration": 100, "Deceleration": 100}})
     assert mv.status_code == 201, mv.text
     page.wait_for_function(
@@ -291,12 +291,13 @@ def test_edit_while_an_axis_moves_is_refused_with_409(page, server: Server) -> N
     assert _slave(server, 4)["name"] == "E004"
 
     # stopped, the same edit is applied
-    stop = s.post("/fb", json={"type": "MC_Stop", "inputs": {"Axis": "MC_Axis003", "Execute": True, "Deceleration": 1000}})
+    stop = httpx.post(server.api("/fb"), json={"type": "MC_Stop", "inputs": {
+        "Axis": "MC_Axis003", "Execute": True, "Deceleration": 1000}})
     assert stop.status_code == 201, stop.text
     page.wait_for_function(
         f"async () => (await (await fetch('/api/v1/fb/{stop.json()['id']}')).json()).outputs.Done === true",
         timeout=10000)
-    assert s.patch(f"/fb/{stop.json()['id']}", json={"inputs": {"Execute": False}}).status_code == 200
+    assert httpx.patch(server.api(f"/fb/{stop.json()['id']}"), json={"inputs": {"Execute": False}}).status_code == 200
     page.wait_for_function(
         "async () => (await (await fetch('/api/v1/axes/MC_Axis003')).json()).variables.Status.Standstill === true",
         timeout=10000)

@@ -192,9 +192,11 @@ function Problems({ node, ed, problems }: { node: number; ed: SlaveEditor; probl
     );
   }
   if (problems.length && ed.dirty) {
+    const names: Record<SlaveTab, string> = { general: "General", sdo: "Start-up parameters", drill: "Commissioning drill" };
+    const where = [...new Set(problems.map((p) => names[tabOfField(p.field)]))].join(", ");
     return (
-      <Text size="xs" c="orange.8" px={10} pb={4} data-testid={`slave-problems-${node}`}>
-        Correct the marked field{problems.length === 1 ? "" : "s"} before applying.
+      <Text size="xs" c="orange.8" px={10} pt={4} data-testid={`slave-problems-${node}`}>
+        Correct the marked field{problems.length === 1 ? "" : "s"} ({where}) before applying.
       </Text>
     );
   }
