@@ -198,7 +198,8 @@ export function issueOf(rawPath: string, msg: string, body: NetConfig, axes: rea
   const path = rawPath.replace(/^(body\.)?ethercat\./, "");
   const text = msg
     .replace(/^Value error, /, "")
-    .replace(/ethercat\.slaves\[(\d+)\]/g, (_, k: string) => slaveLabel(body, Number(k)));
+    .replace(/ethercat\.slaves\[(\d+)\]/g, (_, k: string) => slaveLabel(body, Number(k)))
+    .replace(/\baxes\[(\d+)\]/g, (m: string, k: string) => axes[Number(k)]?.name ?? m);
   const base = { path, msg: text, slave: null, node: null, field: "", axis: null, axisNode: null };
   const s = /^slaves\[(\d+)\](?:\.(.*))?$/.exec(path);
   if (s) {

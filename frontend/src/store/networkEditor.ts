@@ -408,9 +408,10 @@ export async function applySlave(node: number, axes: readonly AxisRef[]): Promis
   }
   if (res.status === 422 && res.issues.length) {
     const body = sent as NetConfig | null;
-    const issues = res.issues.map((i) =>
-      body ? placeSlaveIssue(i, body, k, node) : { field: "", msg: i.msg, path: i.path },
-    );
+    // The slave's own problems first: a field shows the first problem placed on it.
+    const issues = res.issues
+      .map((i) => (body ? placeSlaveIssue(i, body, k, node) : { field: "", msg: i.msg, path: i.path }))
+      .sort((a, b) => Number(a.path.startsWith("axes")) - Number(b.path.startsWith("axes")));
     const first = issues.find((i) => i.field);
     patch(node, (e) => ({ applying: false, issues, tab: first ? tabOfField(first.field) : e.tab }));
     return false;
