@@ -147,6 +147,8 @@ class Controller:
         self.program: dict[int, ProgramEntry] = {}
         self._calls: list[FunctionBlock] | None = None  # the program's instances in call order (cached)
         self._leased: dict[int, ProgramEntry] = {}  # the instances with a dead-man lease
+        self._awake: list[FunctionBlock] | None = None  # instances awake after the last full program pass …
+        self._awake_wakes = -1  # … and the wake-up count then
         # skip the calls of settled (sleeping) instances; False calls every instance every period, which must give
         # the same outputs (tests/controller/test_fb_scheduling.py)
         self.skip_settled = True
@@ -247,19 +249,45 @@ class Controller:
         if net.pending_events:
             self._network_events()
         mc.inputs()
-        fbs = self._calls
-        if fbs is None:  # the program changed: the instances in creation order
-            fbs = self._calls = [e.fb for e in self.program.values()]
-        if self.skip_settled:
-            for fb in fbs:
-                if not fb._asleep:  # a settled instance's call changes nothing (FunctionBlock.sleep)
-                    fb.call()
-        else:
-            for fb in fbs:
-                fb.call()
+        self._program_stage(mc)
         mc.motion()
         mc.outputs()
         self.cycle += 1
+
+    def _program_stage(self, mc: MotionModule) -> None:
+        """Stage 3: every instance in creation order, except those asleep when their turn comes (a settled instance's
+        call changes nothing; `FunctionBlock.sleep`). While no instance was woken since the last full pass, only the
+        instances awake after it can be awake, so only they are visited; a wake-up during the pass (a call aborting
+        another instance's job …) continues it over every later instance."""
+        fbs = self._calls
+        if fbs is None:  # the program changed: the instances in creation order
+            fbs = self._calls = [e.fb for e in self.program.values()]
+            for k, fb in enumerate(fbs):
+                fb._order = k
+            self._awake = None
+        if not self.skip_settled:
+            for fb in fbs:
+                fb.call()
+            return
+        awake = self._awake
+        if awake is not None and mc.fb_wakes == self._awake_wakes:
+            w0 = mc.fb_wakes
+            for fb in awake:
+                if not fb._asleep:
+                    fb.call()
+                    if mc.fb_wakes != w0:  # woke something: the rest of the pass visits every instance
+                        for later in fbs[fb._order + 1:]:
+                            if not later._asleep:
+                                later.call()
+                        self._awake = None
+                        return
+            return
+        for fb in fbs:
+            if not fb._asleep:
+                fb.call()
+        # the instances awake now; valid while nothing wakes another one
+        self._awake = [fb for fb in fbs if not fb._asleep]
+        self._awake_wakes = mc.fb_wakes
 
     def _network_events(self) -> None:
         for level, code, message in self.network.pending_events:

@@ -130,6 +130,7 @@ class MotionModule:
         self.changed: list[Any] = []  # jobs whose status changed this period (their instances are refreshed)
         self.homing_axes: dict[int, Axis] = {}
         self.fb_touched: set[int] = set()  # instances woken or put to sleep since the last snapshot
+        self.fb_wakes = 0  # wake-ups so far (the kernel's program stage visits only awake instances while unchanged)
         self.watchers: dict[int, Any] = {}  # instances watching a latch / trigger each period (by instance id)
         self.common_reset_generation = 0  # ResetMCError: releases instances whose error has the MC common source
         self._inv_mask = np.zeros(n, dtype=np.uint32)  # 60FDh bits whose logic is inverted (axis parameters)

@@ -220,6 +220,7 @@ class FunctionBlock:
         object.__setattr__(self, "_ready", False)
         # a settled instance sleeps: the kernel skips its calls until an input, its job or its axis wakes it
         self._asleep = False
+        self._order = 0  # position in the program's call order (kept by the kernel)
         self.mc = mc
         self.id = fb_id
         self.inp: dict[str, Any] = {v.name: v.default for v in (*self.DEF.inouts, *self.DEF.inputs)}
@@ -258,7 +259,9 @@ class FunctionBlock:
     def wake(self) -> None:
         """Call this instance again from the next call of the program on (something its call reads changed)."""
         self.__dict__["_asleep"] = False
-        self.mc.fb_touched.add(self.id)
+        mc = self.mc
+        mc.fb_touched.add(self.id)
+        mc.fb_wakes += 1
 
     def sleep(self) -> None:
         """The instance's call would change nothing until one of its inputs, its job or its axis changes: the kernel
