@@ -6,9 +6,9 @@ callable queued with `call()` and executed by this thread between two cycles, so
 concurrently; readers use the published immutable snapshot.
 
 Realtime pacing: period k spans [t0 + k·T, t0 + (k+1)·T] of wall time. The runner may compute cycle k up to
-`REALTIME_LEAD_S` before its period begins — a small jitter buffer, because the operating system sometimes wakes a
-thread milliseconds late — and counts an overrun when cycle k completes after t0 + (k+1)·T, i.e. when simulated time
-really fell behind wall time. If it falls more than `MAX_LAG_PERIODS` behind (machine suspended, debugger), it
+`REALTIME_LEAD_S` before its period begins — a jitter buffer, because the operating system (or the virtual machine)
+sometimes stalls or wakes a thread milliseconds late — and counts an overrun when cycle k completes after
+t0 + (k+1)·T, i.e. when simulated time really fell behind wall time (docs/decisions.md D16). If it falls more than `MAX_LAG_PERIODS` behind (machine suspended, debugger), it
 re-anchors t0 instead of racing to catch up, and counts the skipped periods as overruns.
 """
 
@@ -36,7 +36,7 @@ MAX_LAG_PERIODS = 50
 FAST_SLICE_S = 0.004  # fast mode: run cycles for this long, then serve requests and publish
 PUBLISH_INTERVAL_S = 1 / 120  # snapshots in running modes at most this often (and after every request)
 RTF_WINDOW_S = 0.5
-REALTIME_LEAD_S = 0.004
+REALTIME_LEAD_S = 0.020  # jitter buffer: see docs/decisions.md D16
 
 
 @dataclass(frozen=True)
