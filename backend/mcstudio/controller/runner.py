@@ -8,8 +8,9 @@ concurrently; readers use the published immutable snapshot.
 Realtime pacing: period k spans [t0 + k·T, t0 + (k+1)·T] of wall time. The runner may compute cycle k up to
 `REALTIME_LEAD_S` before its period begins — a jitter buffer, because the operating system (or the virtual machine)
 sometimes stalls or wakes a thread milliseconds late — and counts an overrun when cycle k completes after
-t0 + (k+1)·T, i.e. when simulated time really fell behind wall time (docs/decisions.md D16). If it falls more than `MAX_LAG_PERIODS` behind (machine suspended, debugger), it
-re-anchors t0 instead of racing to catch up, and counts the skipped periods as overruns.
+t0 + (k+1)·T, i.e. when simulated time really fell behind wall time (docs/decisions.md D16). If it falls more than
+`MAX_LAG_PERIODS` behind (machine suspended, debugger), it re-anchors t0 instead of racing to catch up, and counts
+the skipped periods as overruns.
 """
 
 from __future__ import annotations
