@@ -18,7 +18,6 @@ from __future__ import annotations
 import resource
 import threading
 import time
-from array import array
 from pathlib import Path
 from typing import Any
 
@@ -85,7 +84,7 @@ def run(*, seconds: float, project_dir: Path = DEMO) -> dict[str, Any]:
     project = load_project(project_dir, library)
     c = Controller(project, library=library)
     runner = Runner(c, mode="realtime")
-    runner.timing_log = array("d")
+    runner.enable_timing_log(int(seconds / c.period_s * 1.2) + 1000)
     runner.start()
     try:
         moves = runner.call(_program)
@@ -98,7 +97,8 @@ def run(*, seconds: float, project_dir: Path = DEMO) -> dict[str, Any]:
     finally:
         runner.stop()
     wall = time.perf_counter() - start
-    log = np.frombuffer(runner.timing_log, dtype=float).reshape(-1, 3)
+    assert runner.timing_log is not None
+    log = runner.timing_log[:runner.timing_rows]
     period = c.period_s
     begin, t_start, t_end = log[:, 0], log[:, 1], log[:, 2]
     margin = (begin + period - t_end) * 1e6

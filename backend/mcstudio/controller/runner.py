@@ -19,12 +19,13 @@ import logging
 import sys
 import threading
 import time
-from array import array
 from collections import deque
 from collections.abc import Callable
 from concurrent.futures import Future
 from dataclasses import dataclass
 from typing import Literal, TypeVar
+
+import numpy as np
 
 from .kernel import Controller, Snapshot
 
@@ -37,7 +38,7 @@ MAX_LAG_PERIODS = 50
 FAST_SLICE_S = 0.004  # fast mode: run cycles for this long, then serve requests and publish
 PUBLISH_INTERVAL_S = 1 / 120  # snapshots in running modes at most this often (and after every request)
 RTF_WINDOW_S = 0.5
-REALTIME_LEAD_S = 0.020  # jitter buffer: see docs/decisions.md D16
+REALTIME_LEAD_S = 0.050  # jitter buffer: see docs/decisions.md D16
 
 
 @dataclass(frozen=True)
@@ -71,8 +72,10 @@ class Runner:
         self._load_sum = 0.0
         self._load_max = 0.0
         self._load_n = 0
-        # optional timing log of realtime cycles for benchmarks: (ideal period start, compute start, compute end)
-        self.timing_log: array[float] | None = None
+        # optional timing log of realtime cycles for benchmarks: rows (ideal period start, compute start, compute end)
+        # in a buffer allocated beforehand (growing it in the loop would stall the kernel while it is copied)
+        self.timing_log: np.ndarray | None = None
+        self.timing_rows = 0
 
     # ------------------------------------------------------------------ public (any thread)
     @property
@@ -142,6 +145,12 @@ class Runner:
             controller.publish()
 
         self.call(apply)
+
+    def enable_timing_log(self, cycles: int) -> None:
+        """Log the timing of the next `cycles` realtime cycles (`timing_log[:timing_rows]`, seconds of
+        `time.perf_counter()`)."""
+        self.timing_log = np.zeros((cycles, 3))
+        self.timing_rows = 0
 
     def add_listener(self, fn: Callable[[Controller], None]) -> None:
         """`fn(controller)` runs in the kernel thread after each publication (e.g. the 3D view)."""
@@ -279,8 +288,11 @@ class Runner:
         self._load_n += 1
         if took > self._load_max:
             self._load_max = took
-        if self.timing_log is not None:
-            self.timing_log.extend((begin, start, done))
+        log = self.timing_log
+        if log is not None and self.timing_rows < len(log):
+            row = log[self.timing_rows]
+            row[0], row[1], row[2] = begin, start, done
+            self.timing_rows += 1
         self._release_after_cycle()
         self._publish()
         self._update_rtf()
