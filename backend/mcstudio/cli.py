@@ -62,8 +62,9 @@ def _cmd_serve(args: argparse.Namespace) -> int:
     studio = Studio(runner=runner, project_dir=project_dir,
                     projects_root=Path(args.projects_root).resolve() if args.projects_root else project_dir.parent,
                     viz=viz)
-    app = create_app(studio)
-    runner.start()  # after the imports and the app are built, so start-up work does not compete with the kernel
+    # the kernel starts once the server is up (uvicorn's start-up work would otherwise hold the GIL in its first periods
+    # and count overruns that say nothing about the controller)
+    app = create_app(studio, on_startup=runner.start)
     print(f"MC Studio {__version__}: project '{project.name}' ({project_dir}), mode {args.mode}")
     print(f"  studio  http://{args.host}:{args.port}/")
     print(f"  API     http://{args.host}:{args.port}/docs")

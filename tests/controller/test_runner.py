@@ -84,3 +84,47 @@ def test_replace_controller(runner: Runner) -> None:
     runner.replace_controller(new)
     assert runner.controller is new
     assert runner.snapshot.project == "test"
+
+
+class FakeClock:
+    def __init__(self, t: float = 1000.0) -> None:
+        self.t = t
+
+    def __call__(self) -> float:
+        return self.t
+
+
+def test_realtime_pacing_overruns_only_beyond_the_jitter_buffer() -> None:
+    """D16: cycle k's period is [t0 + k·T, t0 + (k+1)·T]; it may be computed up to the jitter buffer early, and it is
+    an overrun only when it completes after its period ended. The first period begins one buffer after the start,
+    so a slow first cycle (cold code) is no overrun. Driven by an injected clock, without the runner's thread."""
+    from mcstudio.controller.runner import REALTIME_LEAD_S
+
+    c = Controller(small_project())
+    r = Runner(c, mode="realtime")
+    clock = r.clock = FakeClock()
+    compute = {"s": 0.0}
+    run = c.run_cycle
+
+    def slow_cycle() -> None:
+        run()
+        clock.t += compute["s"]
+
+    c.run_cycle = slow_cycle  # type: ignore[method-assign]
+    T = c.period_s
+    compute["s"] = 5 * T  # a slow first cycle
+    r._realtime_cycle(c)
+    assert c.cycle == 1 and r.overruns == 0
+    compute["s"] = 0.0
+    while clock.t + REALTIME_LEAD_S >= 1000.0 + REALTIME_LEAD_S + c.cycle * T:  # catch up to the buffer's edge
+        r._realtime_cycle(c)
+    ahead = 1000.0 + REALTIME_LEAD_S + c.cycle * T - clock.t
+    assert ahead == pytest.approx(REALTIME_LEAD_S, abs=T) and r.overruns == 0
+    # a stall shorter than the buffer: still no overrun
+    clock.t += REALTIME_LEAD_S - 5 * T
+    r._realtime_cycle(c)
+    assert r.overruns == 0
+    # a stall longer than what is left of the buffer: the next cycle completes after its period → one overrun
+    clock.t += REALTIME_LEAD_S
+    r._realtime_cycle(c)
+    assert r.overruns == 1

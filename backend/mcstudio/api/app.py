@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import contextlib
+from collections.abc import AsyncIterator, Callable
 from pathlib import Path
 from typing import Any
 
@@ -29,8 +31,18 @@ def default_static_dir() -> Path | None:
     return None
 
 
-def create_app(studio: Studio, *, static_dir: Path | None = None, cors_origins: list[str] | None = None) -> FastAPI:
+def create_app(studio: Studio, *, static_dir: Path | None = None, cors_origins: list[str] | None = None,
+               on_startup: Callable[[], None] | None = None) -> FastAPI:
+    """The application; `on_startup` runs once the server has started (the CLI starts the kernel thread there)."""
+
+    @contextlib.asynccontextmanager
+    async def lifespan(_: FastAPI) -> AsyncIterator[None]:
+        if on_startup is not None:
+            on_startup()
+        yield
+
     app = FastAPI(
+        lifespan=lifespan,
         title="MC Studio",
         version=__version__,
         description="REST API of MC Studio: an emulated NJ/NX-style machine controller (MC function module, "

@@ -76,6 +76,7 @@ class Runner:
         # in a buffer allocated beforehand (growing it in the loop would stall the kernel while it is copied)
         self.timing_log: np.ndarray | None = None
         self.timing_rows = 0
+        self.clock: Callable[[], float] = time.perf_counter  # the wall clock of realtime pacing (tests inject one)
 
     # ------------------------------------------------------------------ public (any thread)
     @property
@@ -260,12 +261,13 @@ class Runner:
 
     def _realtime_cycle(self, ctrl: Controller) -> None:
         period = ctrl.period_s
+        lead = max(period, REALTIME_LEAD_S)
         if self._rt_anchor is None:
-            self._rt_anchor = (time.perf_counter(), ctrl.cycle)
+            # the first period begins one buffer from now: (re)starting, like any stall, may use the buffer
+            self._rt_anchor = (self.clock() + lead, ctrl.cycle)
         t0, c0 = self._rt_anchor
         begin = t0 + (ctrl.cycle - c0) * period
-        lead = max(period, REALTIME_LEAD_S)
-        now = time.perf_counter()
+        now = self.clock()
         if now < begin - lead:
             with self._wake:
                 if not self._queue and not self._stop:
@@ -275,12 +277,12 @@ class Runner:
         if lag > MAX_LAG_PERIODS:
             skipped = int(lag)
             self.overruns += skipped
-            self._rt_anchor = (now, ctrl.cycle)
-            begin = now
-        start = time.perf_counter()
+            self._rt_anchor = (now + lead, ctrl.cycle)
+            begin = now + lead
+        start = self.clock()
         ctrl.check_leases()
         ctrl.run_cycle()
-        done = time.perf_counter()
+        done = self.clock()
         if done > begin + period:
             self.overruns += 1
         took = done - start
