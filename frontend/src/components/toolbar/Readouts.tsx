@@ -1,4 +1,4 @@
-import { Group, Stack, Text } from "@mantine/core";
+import { Group, Stack, Text, Tooltip } from "@mantine/core";
 import type { ReactNode } from "react";
 import { useLive } from "../../hooks/useLive";
 import { fixed } from "../../lib/format";
@@ -22,6 +22,9 @@ export function Readouts() {
   const time = useLive((s) => s.controller?.time_s ?? null);
   const rtf = useLive((s) => s.controller?.rtf ?? null);
   const overruns = useLive((s) => s.controller?.overruns ?? null);
+  const taskUs = useLive((s) => s.controller?.cycle_time_us ?? null);
+  const taskMaxUs = useLive((s) => s.controller?.cycle_time_max_us ?? null);
+  const periodUs = useLive((s) => (s.controller ? s.controller.period_s * 1e6 : null));
   const live = useLive((s) => s.ws === "live");
   return (
     <Group gap="md" wrap="nowrap" style={{ opacity: live ? 1 : 0.45 }} title={live ? undefined : "Stale: not connected"}>
@@ -37,6 +40,21 @@ export function Readouts() {
       <Readout label="Overruns" testId="overruns" w={58}>
         {overruns ?? "—"}
       </Readout>
+      <Tooltip
+        label={
+          taskUs && periodUs
+            ? `Task monitor: a control period takes ${fixed(taskUs, 0)} µs on average, at most ${fixed(taskMaxUs, 0)} µs ` +
+              `(last half second) — ${fixed((100 * taskUs) / periodUs, 0)} % of the ${fixed(periodUs, 0)} µs period`
+            : "Task monitor: computation time of a control period (0 while paused)"
+        }
+        openDelay={300}
+      >
+        <div>
+          <Readout label="Task" testId="task-time" w={64}>
+            {taskUs ? fixed(taskUs, 0) : "—"} <span className="unit">µs</span>
+          </Readout>
+        </div>
+      </Tooltip>
     </Group>
   );
 }
