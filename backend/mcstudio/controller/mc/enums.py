@@ -151,6 +151,28 @@ class _eMC_PARAMETER_NUMBER(enum.IntEnum):
     _mcStartVel = 12
 
 
+class _eMC_CAM_CURVE(enum.IntEnum):
+    """Curve shape of one cam node (MC_GenerateCamTable, `omron-group-and-cam.md` §5.4.2, seed 000 line 17948).
+
+    The double "l" of Trapeclloid is the manual's spelling, kept so programs read against it."""
+
+    _mcConstantLine = 0
+    _mcStraightLine = 1
+    _mcParabolic = 2
+    _mcModifiedConstantVel = 3
+    _mcModifiedTrapezoid = 4
+    _mcModifiedSine = 5
+    _mcCycloidal = 6
+    _mcTrapeclloid = 7
+    _mcReverseTrapeclloid = 8
+    _mcSimpleHarmonic = 9
+    _mcDoubleHarmonic = 10
+    _mcReverseDoubleHarmonic = 11
+    _mcNC2Curve = 12
+    _mcPolynomic3 = 13
+    _mcPolynomic5 = 14
+
+
 ENUMS: dict[str, type[enum.IntEnum]] = {
     cls.__name__: cls
     for cls in (
@@ -174,6 +196,7 @@ ENUMS: dict[str, type[enum.IntEnum]] = {
         _eMC_REFERENCE_TYPE,
         _eMC_EXECUTION_MODE,
         _eMC_PARAMETER_NUMBER,
+        _eMC_CAM_CURVE,
     )
 }
 
