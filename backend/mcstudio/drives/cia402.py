@@ -79,6 +79,7 @@ import enum
 
 import numpy as np
 
+from ..fastnp import copyto, count_nonzero
 from ..plant.ideal import Mechanics
 from ..plant.mechanism import KIND_HOLD, KIND_POSITION, KIND_TORQUE, KIND_VELOCITY, Mechanism
 from .homing import (
@@ -291,6 +292,7 @@ class Cia402Drives:
         self._rx_bytes: tuple[np.ndarray, np.ndarray] = (np.zeros(0, np.uint8), np.zeros(0, np.uint8))
         # work arrays of the transmission (no allocation per period)
         self._t_vel = np.zeros(n)
+        self._inv_T0 = np.array(1.0 / period_s)
         self._t_trq = np.zeros(n)
         self._t_fe = np.zeros(n, dtype=np.int64)
         self._t_abs = np.zeros(n, dtype=np.int64)
@@ -394,7 +396,7 @@ class Cia402Drives:
     def _receive(self, rx: np.ndarray, online: np.ndarray) -> tuple[np.ndarray, bool]:
         """The drives' own copy of their objects: this period's values for the drives online, the last ones for
         the others."""
-        all_online = np.count_nonzero(online) == self.n
+        all_online = count_nonzero(online) == self.n
         if self._rx is None or self._rx.dtype != rx.dtype:
             self._rx = rx.copy()
             names = rx.dtype.names or ()
@@ -405,7 +407,7 @@ class Cia402Drives:
             if rx.flags.c_contiguous:
                 if rx is not self._rx_src:  # byte views of the source and the copy, made once per source
                     self._rx_src, self._rx_bytes = rx, (rx.view(np.uint8), self._rx.view(np.uint8))
-                np.copyto(self._rx_bytes[1], self._rx_bytes[0])  # bytes: much cheaper than field by field
+                copyto(self._rx_bytes[1], self._rx_bytes[0])  # bytes: much cheaper than field by field
             else:
                 self._rx[:] = rx
         else:
@@ -427,7 +429,7 @@ class Cia402Drives:
         state = self.state
         req = r["modes_of_operation"]
         events = bool(self._pending) or not all_online or self._watch
-        if not events and self._sm_key is not None and np.count_nonzero(self.main_power) == self.n:
+        if not events and self._sm_key is not None and count_nonzero(self.main_power) == self.n:
             # the same controlwords (so no fault reset edge), mode requests and states as in a period that changed
             # nothing: nothing to do
             key = (cw.tobytes(), req.tobytes(), state_bytes)
@@ -794,8 +796,8 @@ class Cia402Drives:
     def _sense(self, prev_pos: np.ndarray, r: np.ndarray) -> None:
         """60FDh and the touch probes after the mechanism moved from `prev_pos` to `position`; homing edges."""
         fn = r["touch_probe_function"]
-        probing = self._probing or bool(np.count_nonzero(fn))
-        homing = bool(self._gen_idx.size) and bool(np.count_nonzero(self.homing.running))
+        probing = self._probing or bool(count_nonzero(fn))
+        homing = bool(self._gen_idx.size) and bool(count_nonzero(self.homing.running))
         if not (self._di.fitted or probing or homing):
             return
         p1 = _f(self.position)
@@ -807,7 +809,7 @@ class Cia402Drives:
                 self._static_dirty = True
         if probing:
             self.probes.update(p0, p1, fn, self.sensors, self.home_shift if self._shifted else None)
-            self._probing = bool(np.count_nonzero(fn))
+            self._probing = bool(count_nonzero(fn))
             self._static_dirty = True
         hm = self.homing
         if homing:
@@ -823,9 +825,9 @@ class Cia402Drives:
     def _supervise(self, r: np.ndarray) -> None:
         """Following error (60F4h, 6065h/6066h → 8611h), statusword mode bits, ends of ramps."""
         if self._all_csp:
-            fe = np.subtract(self._demand_int, self.position, out=self._fe)
-            over = np.abs(fe, out=self._t_abs) > r["following_error_window"]
-            any_over = bool(np.count_nonzero(over))
+            fe = np.subtract(self._demand_int, self.position, self._fe)
+            over = np.abs(fe, self._t_abs) > r["following_error_window"]
+            any_over = bool(count_nonzero(over))
             if any_over or self._fe_counting:
                 self._following_error(over, r)
             if any_over:
@@ -912,7 +914,7 @@ class Cia402Drives:
             self._sw_mode_last = self._sw_mode
         if plant.any_limited:
             sw = sw | limited * np.uint16(SW_INTERNAL_LIMIT)
-        if np.count_nonzero(self.warning):
+        if count_nonzero(self.warning):
             sw = sw | self.warning * np.uint16(SW_WARNING)
         tx["statusword"] = sw
         shifted = self._shifted
@@ -921,15 +923,15 @@ class Cia402Drives:
         tx["position_actual"] = self.position + self.home_shift if shifted else self.position
         v = self._t_vel
         np.subtract(self.position, prev_pos, out=v, casting="unsafe")
-        v *= 1.0 / self.period_s
-        np.rint(v, out=v)
-        tx["velocity_actual"] = _saturate(v, 2**31)  # (the object's range)
-        torque = _saturate(np.rint(plant.torque, out=self._t_trq), 2**15)
+        v *= self._inv_T0
+        np.rint(v, v)
+        tx["velocity_actual"] = _saturate(v, _LIM32F)  # (the object's range)
+        torque = _saturate(np.rint(plant.torque, self._t_trq), _LIM16F)
         tx["torque_actual"] = torque
         tx["torque_demand"] = torque if plant.demand_torque is plant.torque else \
-            _saturate(np.rint(plant.demand_torque), 2**15)
-        np.copyto(self._t_fe, self._fe)
-        tx["following_error_actual"] = _saturate(self._t_fe, 2**31)
+            _saturate(np.rint(plant.demand_torque), _LIM16F)
+        copyto(self._t_fe, self._fe)
+        tx["following_error_actual"] = _saturate(self._t_fe, _LIM32I)
         if self._static_dirty or tx is not self._last_tx:
             # fields that change only with events (faults, modes, sensors, latches)
             self._static_dirty = False
@@ -949,8 +951,14 @@ class Cia402Drives:
                 tx["_zero"] = 0
 
 
-def _saturate(x: np.ndarray, limit: int) -> np.ndarray:
-    """Clamp x in place to [−limit, limit − 1] (the range of the object's integer type); returns x. (Two ufunc calls:
-    much cheaper than np.clip's wrapper on small arrays.)"""
-    np.minimum(x, limit - 1, out=x)
-    return np.maximum(x, -limit, out=x)
+# object ranges as 0-d arrays (lo, hi): numpy handles a Python scalar operand several times slower than an array
+_LIM32F = (np.array(-2.0**31), np.array(2.0**31 - 1))
+_LIM16F = (np.array(-2.0**15), np.array(2.0**15 - 1))
+_LIM32I = (np.array(-2**31, dtype=np.int64), np.array(2**31 - 1, dtype=np.int64))
+
+
+def _saturate(x: np.ndarray, limits: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
+    """Clamp x in place to the object's range (lo, hi); returns x. (Two ufunc calls: much cheaper than np.clip's
+    wrapper on small arrays.)"""
+    np.minimum(x, limits[1], out=x)  # (keyword: numpy deprecates positional outputs of minimum/maximum)
+    return np.maximum(x, limits[0], out=x)

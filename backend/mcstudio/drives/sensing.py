@@ -15,6 +15,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..fastnp import count_nonzero
+
 # 60FDh digital inputs: CiA402 bits 0–2; vendor bits for the external latch inputs (MC Studio layout)
 DI_NEGATIVE_LIMIT = 1 << 0
 DI_POSITIVE_LIMIT = 1 << 1
@@ -126,10 +128,10 @@ class DigitalInputs:
     def __call__(self, p: np.ndarray) -> np.ndarray:
         """60FDh bits for the positions `p` [pulse] (an array this object owns: copy it to keep it)."""
         # outside its interval (or unknown: the comparisons with nan are False)
-        out = np.greater(p, self._lo, out=self._out)
-        out &= np.less(p, self._hi, out=self._w)
-        np.logical_not(out, out=out)
-        if not np.count_nonzero(out):
+        out = np.greater(p, self._lo, self._out)
+        out &= np.less(p, self._hi, self._w)
+        np.logical_not(out, out)
+        if not count_nonzero(out):
             self.changed = False
             return self._di
         k = np.flatnonzero(out)

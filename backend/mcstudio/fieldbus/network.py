@@ -117,7 +117,7 @@ class _Transfer:
             self.pick = (np.arange(len(src_rows))[:, None] * layout.nbytes + fast[None, :]).reshape(-1)
 
     def __call__(self) -> None:
-        np.take(self.src, self.gather, out=self.img, mode="clip")  # (indices are valid; clip avoids a buffer)
+        self.src.take(self.gather, None, self.img, "clip")  # (indices are valid; clip avoids a buffer)
         if self.pick is None:
             self.dst[self.scatter] = self.img
         else:

@@ -64,7 +64,7 @@ class Mechanism:
         if problems:
             raise ValueError("invalid mechanics: " + "; ".join(problems[:8]))
         self.period_s = T = period_s
-        self._inv_period = 1.0 / T
+        self._inv_period = np.array(1.0 / T)  # (0-d array: cheaper for numpy than a Python scalar operand)
         self.rad_per_pulse = 2.0 * math.pi / mech.pulses_per_rev
         # rigid body, exact over one period with the torque N constant:
         #   ω1 = e·ω0 + g1·N/J,  Δθ = g1·ω0 + g2·N/J  with k = b/J, e = exp(−kT), g1 = (1 − e)/k, g2 = (T − g1)/k

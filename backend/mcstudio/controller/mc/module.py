@@ -26,6 +26,7 @@ from ...drives.cia402 import (
     TS1_STORED,
     TS2_STORED,
 )
+from ...fastnp import copyto, count_nonzero
 from ...fieldbus.network import ENCODER_REQUIRED, SERVO_REQUIRED
 from . import errors as E
 from .axis import Axis
@@ -84,6 +85,10 @@ E_INTERNAL = 0xFFFF  # emulator-internal failure (never a manual code; see docs/
 class MotionModule:
     def __init__(self, project: Project, *, period_s: float, events: EventLog, network: Network | None) -> None:
         self.period_s = period_s
+        # 0-d array constants: numpy handles a Python scalar operand several times slower than an array
+        self._T0 = np.array(period_s)
+        self._TEN = np.array(10.0)
+        self._ZERO = np.array(0.0)
         self.events = events
         self.network = network
         self.cycle = 0
@@ -105,6 +110,7 @@ class MotionModule:
         self.cmd_accdec = np.zeros(n)
         self.cmd_jerk = np.zeros(n)
         self._dv, self._da, self._dj, self._dw = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)  # work arrays
+        self._moving = np.zeros(n, dtype=bool)
         self.prev_cmd_pos = np.zeros(n)
         self.act_pos = np.zeros(n)
         self.act_vel = np.zeros(n)
@@ -292,7 +298,7 @@ class MotionModule:
     def wrapped(self, x: np.ndarray) -> np.ndarray:
         """Positions as reported (a copy): on the ring counter for Rotary Mode axes."""
         out = x.copy()
-        if not np.count_nonzero(self.rotary):
+        if not count_nonzero(self.rotary):
             return out
         r = self.rotary
         out[r] = self.mod_min[r] + np.mod(x[r] - self.mod_min[r], self.mod_len[r])
@@ -438,14 +444,14 @@ class MotionModule:
             rows, sl = self._rows_sel, self._sl_sel
             # actual position: the 32-bit count unwrapped (int32 differences wrap like the object)
             pos32 = tx["position_actual"][sl]
-            d = np.subtract(pos32, self._prev_pos32, out=self._d32)
+            d = np.subtract(pos32, self._prev_pos32, self._d32)
             self._prev_pos32[:] = pos32
             self.act_count[rows] += d
-            new_act = np.divide(self.act_count[rows], self.ppu[rows], out=self._new_act)
+            new_act = np.divide(self.act_count[rows], self.ppu[rows], self._new_act)
             new_act += self.pos_offset[rows]
-            self.act_vel[rows] = (new_act - self.act_pos[rows]) / self.period_s
+            self.act_vel[rows] = (new_act - self.act_pos[rows]) / self._T0
             self.act_pos[rows] = new_act
-            self.act_trq[rows] = tx["torque_actual"][sl] / 10.0  # 0.1 % units
+            self.act_trq[rows] = tx["torque_actual"][sl] / self._TEN  # 0.1 % units
             ok = net.pd_ok[sl]  # type: ignore[union-attr]
             key = b"".join((tx["statusword"][sl].tobytes(), tx["digital_inputs"][sl].tobytes(),
                             tx["modes_display"][sl].tobytes(), tx["touch_probe_status"][sl].tobytes(),
@@ -480,10 +486,10 @@ class MotionModule:
             for i in np.flatnonzero(self.servo_on != prev_on):
                 self.axes[i].on_servo_changed(bool(self.servo_on[i]))
             self._servo_seen = self.servo_on.copy()
-            self._n_off = self.n - int(np.count_nonzero(self.servo_on))
+            self._n_off = self.n - int(count_nonzero(self.servo_on))
         # Servo OFF: the command position reads the actual position (manual §2.3, Cmd.Pos).
         if self._n_off:
-            np.copyto(self.cmd_pos, self.act_pos, where=~self.servo_on)
+            copyto(self.cmd_pos, self.act_pos, where=~self.servo_on)
 
     def _bus_discrete(self, tx: np.ndarray, rows: Any, sl: Any, ok: np.ndarray) -> bool:
         """The discrete inputs of the axes on the bus changed: DrvStatus, servo state, inputs, latches, faults.
@@ -561,12 +567,12 @@ class MotionModule:
                 _, _, _, fin = profiles.evaluate(cycle, T, (self.cmd_pos, self.prof_vel, self.prof_acc))
             else:
                 pos, vel, acc, fin = profiles.evaluate(cycle, T)
-                np.copyto(self.cmd_pos, pos, where=active)
-                np.copyto(self.prof_vel, vel, where=active)
-                np.copyto(self.prof_acc, acc, where=active)
+                copyto(self.cmd_pos, pos, where=active)
+                copyto(self.prof_vel, vel, where=active)
+                copyto(self.prof_acc, acc, where=active)
                 fin &= active
             fin &= self.notify
-            report = np.flatnonzero(fin) if np.count_nonzero(fin) else ()
+            report = np.flatnonzero(fin) if count_nonzero(fin) else ()
             for i in report:
                 axis = self.axes[i]
                 job = axis.current
@@ -579,23 +585,24 @@ class MotionModule:
             self._torque_stage(cycle, T)
         # derived command values (manual §2.3: differences of command positions / velocities)
         vel, accdec, jerk, w = self._dv, self._da, self._dj, self._dw
-        np.subtract(self.cmd_pos, self.prev_cmd_pos, out=vel)
-        vel /= T
-        np.abs(vel, out=accdec)
-        accdec -= np.abs(self.cmd_vel, out=w)
-        accdec /= T
-        np.abs(accdec, out=jerk)
-        jerk -= np.abs(self.cmd_accdec, out=w)
-        jerk /= T
-        if np.count_nonzero(self.step_accdec):
+        T0 = self._T0
+        np.subtract(self.cmd_pos, self.prev_cmd_pos, vel)
+        vel /= T0
+        np.abs(vel, accdec)
+        accdec -= np.abs(self.cmd_vel, w)
+        accdec /= T0
+        np.abs(accdec, jerk)
+        jerk -= np.abs(self.cmd_accdec, w)
+        jerk /= T0
+        if count_nonzero(self.step_accdec):
             accdec[self.step_accdec] = 0.0
             jerk[self.step_accdec] = 0.0
-        np.copyto(self.cmd_jerk, jerk)
-        np.copyto(self.cmd_accdec, accdec)
-        np.copyto(self.cmd_vel, vel)
+        copyto(self.cmd_jerk, jerk)
+        copyto(self.cmd_accdec, accdec)
+        copyto(self.cmd_vel, vel)
         # direction of the last command motion: the sign of Cmd.Vel where it is not 0
-        np.sign(vel, out=w)
-        np.copyto(self.last_dir, w, where=w != 0.0, casting="unsafe")
+        np.sign(vel, w)
+        copyto(self.last_dir, w, where=np.not_equal(w, self._ZERO, self._moving), casting="unsafe")
         self.supervise()
         if self._scheduled:
             # started during this stage (a buffered instruction taking over, an error stop): from the next period
@@ -664,11 +671,11 @@ class MotionModule:
             rx = net.rx  # type: ignore[union-attr]
             rows, sl = self._rows_sel, self._sl_sel
             w, i64, i32 = self._out_w, self._out_i64, self._out_i32
-            np.subtract(self.cmd_pos[rows], self.pos_offset[rows], out=w)
+            np.subtract(self.cmd_pos[rows], self.pos_offset[rows], w)
             w *= self.ppu[rows]
-            np.rint(w, out=w)
-            np.copyto(i64, w, casting="unsafe")
-            np.copyto(i32, i64, casting="unsafe")  # the 32-bit object wraps
+            np.rint(w, w)
+            copyto(i64, w, casting="unsafe")
+            copyto(i32, i64, casting="unsafe")  # the 32-bit object wraps
             rx["target_position"][sl] = i32
             sw = net.tx["statusword"][sl]  # type: ignore[union-attr]
             key = sw.tobytes() + self.servo_req.tobytes()

@@ -19,6 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 from ruckig import ControlInterface, InputParameter, Result, Ruckig, Trajectory
 
+from ...fastnp import count_nonzero
+
 MAX_SEGMENTS = 24  # brake (2) + 7 per ruckig stage, two stages for a reversal, plus the tail
 _TINY = 1e-9
 
@@ -268,6 +270,8 @@ class ProfileTable:
         self.acc = np.zeros(n)
         self.finished = np.zeros(n, dtype=bool)
         self._cross = np.zeros(n, dtype=bool)
+        self._c1 = np.array(0, dtype=np.int64)
+        self._T = np.array(0.0)
 
     def load(self, i: int, seg: Segments, start_cycle: int) -> None:
         m = len(seg.t)
@@ -318,26 +322,30 @@ class ProfileTable:
         appears in the period in which it was accepted; its Active output follows one period later).
         """
         k, t, tau, w = self._k, self._t, self._tau, self._w
-        np.subtract(cycle + 1, self.start_cycle, out=k)
-        np.multiply(k, period_s, out=t)
-        cross = np.greater_equal(t, self.next_t, out=self._cross)
-        if np.count_nonzero(cross):
+        c1, T = self._c1, self._T
+        c1[()] = cycle + 1  # (0-d arrays: a Python scalar operand costs numpy several times more)
+        if T[()] != period_s:
+            T[()] = period_s
+        np.subtract(c1, self.start_cycle, k)
+        np.multiply(k, T, t)
+        cross = np.greater_equal(t, self.next_t, self._cross)
+        if count_nonzero(cross):
             for i in np.flatnonzero(cross):
                 self._enter(i, max(int(np.searchsorted(self.t[i], t[i], side="right")) - 1, 0))
-        np.subtract(t, self.c_t0, out=tau)
+        np.subtract(t, self.c_t0, tau)
         # position p + τ(v + τ(a/2 + τ·j/6)), velocity v + τ(a + τ·j/2), acceleration a + τ·j
         pos, vel, acc = out if out is not None else (self.pos, self.vel, self.acc)
-        np.multiply(tau, self.c_j6, out=w)
+        np.multiply(tau, self.c_j6, w)
         w += self.c_a2
         w *= tau
         w += self.c_v
         w *= tau
-        np.add(w, self.c_p, out=pos)
-        np.multiply(tau, self.c_j2, out=w)
+        np.add(w, self.c_p, pos)
+        np.multiply(tau, self.c_j2, w)
         w += self.c_a
         w *= tau
-        np.add(w, self.c_v, out=vel)
-        np.multiply(tau, self.c_j, out=acc)
+        np.add(w, self.c_v, vel)
+        np.multiply(tau, self.c_j, acc)
         acc += self.c_a
-        np.greater_equal(t, self.duration, out=self.finished)
+        np.greater_equal(t, self.duration, self.finished)
         return pos, vel, acc, self.finished

@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ...drives.cia402 import DI_NEGATIVE_LIMIT, DI_POSITIVE_LIMIT
+from ...fastnp import count_nonzero
 from . import errors as E
 from .enums import AxisState
 
@@ -60,7 +61,7 @@ class Supervision:
         self._key = key
         on = m.servo_on & (m.state != AxisState.ErrorStop)
         self.on = on
-        self.n_on = int(np.count_nonzero(on))
+        self.n_on = int(count_nonzero(on))
         homing = m.state == AxisState.Homing
         pos_loop = on & m.fe_check & ~m.trq_active
         self.fe_over = np.where(pos_loop & (m.fe_over > 0), m.fe_over, np.inf)
@@ -93,15 +94,15 @@ class Supervision:
         b1, b2 = self._b1, self._b2
         # ---- following error (not in torque control: no position loop, Cmd.Pos is the feedback of one period
         # earlier)
-        fe = np.subtract(m.cmd_pos, m.act_pos, out=self._fe)
-        np.abs(fe, out=fe)
-        over = np.greater(fe, self.fe_over, out=b1)
-        if np.count_nonzero(over):
+        fe = np.subtract(m.cmd_pos, m.act_pos, self._fe)
+        np.abs(fe, fe)
+        over = np.greater(fe, self.fe_over, b1)
+        if count_nonzero(over):
             for i in np.flatnonzero(over):
                 m.axes[i].raise_error(E.E_FOLLOWING_ERROR, stop="immediate",
                                       detail=f"following error {fe[i]:g} > {m.fe_over[i]:g}")
         if self.any_fe_warn or E.O_FOLLOWING_ERROR_WARNING in m.obs_set:
-            _observe(m, E.O_FOLLOWING_ERROR_WARNING, np.greater(fe, self.fe_warn, out=b2), on)
+            _observe(m, E.O_FOLLOWING_ERROR_WARNING, np.greater(fe, self.fe_warn, b2), on)
         vel = m.cmd_vel
         # ---- limit inputs during motion (homing handles them itself)
         if self.any_limit_on:
@@ -119,10 +120,10 @@ class Supervision:
             _software_limits(m, sw, m.period_s)
         # ---- Linear Mode: the command position leaves the signed 40-bit pulse range (not in torque control, where
         # overflow is "motion without a target position")
-        hi = np.greater(m.cmd_pos, m.lin_max, out=b1)
-        lo = np.less(m.cmd_pos, m.lin_min, out=b2)
+        hi = np.greater(m.cmd_pos, m.lin_max, b1)
+        lo = np.less(m.cmd_pos, m.lin_min, b2)
         lo |= hi
-        if np.count_nonzero(lo):  # rare: build the masks only then
+        if count_nonzero(lo):  # rare: build the masks only then
             for i in np.flatnonzero(lo & self.ovf_scope):
                 m.axes[i].position_overflow(1 if hi[i] else -1)
         # ---- warnings (observations)
@@ -133,12 +134,12 @@ class Supervision:
                 limit = warn.get(code)
                 if limit is not None:
                     if code == E.O_VELOCITY_WARNING:
-                        values = np.abs(vel, out=w)
+                        values = np.abs(vel, w)
                     elif code == E.O_ACCELERATION_WARNING:
                         values = m.cmd_accdec
                     else:
-                        values = np.negative(m.cmd_accdec, out=w)
-                    _observe(m, code, np.greater(values, limit, out=b2), on)
+                        values = np.negative(m.cmd_accdec, w)
+                    _observe(m, code, np.greater(values, limit, b2), on)
                 elif code in m.obs_set:
                     _observe(m, code, np.zeros(m.n, dtype=bool), on)
 
@@ -148,7 +149,7 @@ def _observe(m: MotionModule, code: int, active: np.ndarray, scope: np.ndarray) 
     holds where each check has set its observation (a code is removed when no axis has it any more), so a period
     without warnings costs one comparison per configured check."""
     flags = m.obs_set.get(code)
-    if np.count_nonzero(active):
+    if count_nonzero(active):
         if flags is None:
             flags = m.obs_set[code] = np.zeros(m.n, dtype=bool)
         for i in np.flatnonzero(active):
@@ -157,13 +158,13 @@ def _observe(m: MotionModule, code: int, active: np.ndarray, scope: np.ndarray) 
     if flags is None:
         return
     gone = flags & ~active & scope
-    if np.count_nonzero(gone):
+    if count_nonzero(gone):
         for i in np.flatnonzero(gone):
             a = m.axes[i]
             if code in a.observations:
                 a.set_observation(code, False)
         flags &= ~gone
-        if not np.count_nonzero(flags):
+        if not count_nonzero(flags):
             del m.obs_set[code]
 
 
