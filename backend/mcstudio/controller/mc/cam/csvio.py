@@ -1,6 +1,6 @@
 """Cam tables as CSV files in the project: `phase,distance` with a header, one cam data point per line.
 
-Format (docs/cams.md, decision D35):
+Format (docs/cams.md, decision D36):
 
 * UTF-8 (a byte-order mark is accepted); lines end with LF or CRLF; blank lines and lines starting with `#`
   (comments) are ignored anywhere;
@@ -87,7 +87,8 @@ def parse_cam_csv(text: str) -> tuple[np.ndarray, np.ndarray]:
         if not header_seen:
             header_seen = True
             if [f.strip().lower() for f in line.split(",")] != HEADER.split(","):
-                problems.append(CsvProblem(no, f"expected the header {HEADER!r}, found {line!r}"))
+                # Without the header the columns are unknown: report only this.
+                raise CamCsvError([CsvProblem(no, f"expected the header {HEADER!r}, found {line!r}")])
             continue
         fields = line.split(",")
         if len(fields) != 2:

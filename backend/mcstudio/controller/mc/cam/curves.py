@@ -4,7 +4,7 @@ A segment of a cam profile runs from (P_init, d_init) to (P_final, d_final); wit
 P_init) its distance is d_init + (d_final − d_init)·f(x), f(0) = 0, f(1) = 1 (`omron-group-and-cam.md` §5.4.4).
 The manual defines only the straight line, the dwell and the two polynomials (§5.4.4); every other shape is the
 standard law of cam-design literature (Makino's standard curves, as tabulated by Japanese cam makers), chosen and
-cited in docs/cams.md and decisions D30–D32.
+cited in docs/cams.md and decisions D31–D33.
 
 Every fixed law is stored as pieces of "harmonic acceleration": on piece k (u = x − x_k)
 
@@ -179,7 +179,7 @@ _C = _eMC_CAM_CURVE
 _MT = HarmonicLaw("modified trapezoid", [
     _sin_ramp(0.0, 1 / 8, 1.0), Piece(1 / 8, c=1.0), _cos_fall(3 / 8, 1 / 4, 1.0, quarters=2),
     Piece(5 / 8, c=-1.0), _cos_fall(7 / 8, 1 / 8, -1.0)])
-# Trapecloid (D31): the modified trapezoid's first half (acceleration) followed by the cycloid's second half
+# Trapecloid (D32): the modified trapezoid's first half (acceleration) followed by the cycloid's second half
 # (deceleration); both reach V = 2 and f = ½ at x = ½ with zero acceleration, so the halves join in V and A.
 _TRAPECLOID = HarmonicLaw("trapecloid", [
     _sin_ramp(0.0, 1 / 8, _MT_AM), Piece(1 / 8, c=_MT_AM), _cos_fall(3 / 8, 1 / 8, _MT_AM),
@@ -189,7 +189,7 @@ _DOUBLE_HARMONIC = HarmonicLaw("double harmonic", [Piece(0.0, terms=((1.0, PI, P
 LAWS: dict[_eMC_CAM_CURVE, HarmonicLaw | MirroredLaw] = {
     _C._mcStraightLine: HarmonicLaw("straight line", [Piece(0.0)], v0=1.0),
     _C._mcParabolic: HarmonicLaw("parabolic", [Piece(0.0, c=1.0), Piece(0.5, c=-1.0)]),
-    # MCV50 (D30): modified-sine-shaped acceleration compressed into the first quarter (ramp 1/16, fall 3/16),
+    # MCV50 (D31): modified-sine-shaped acceleration compressed into the first quarter (ramp 1/16, fall 3/16),
     # constant velocity over the middle half, mirrored deceleration.
     _C._mcModifiedConstantVel: HarmonicLaw("modified constant velocity", [
         _sin_ramp(0.0, 1 / 16, 1.0), _cos_fall(1 / 16, 3 / 16, 1.0), Piece(1 / 4),
@@ -201,10 +201,10 @@ LAWS: dict[_eMC_CAM_CURVE, HarmonicLaw | MirroredLaw] = {
     _C._mcTrapeclloid: _TRAPECLOID,
     _C._mcReverseTrapeclloid: MirroredLaw("reverse trapecloid", _TRAPECLOID),
     _C._mcSimpleHarmonic: HarmonicLaw("simple harmonic", [Piece(0.0, terms=((1.0, PI, PI / 2),))]),
-    # Double harmonic (D31): smooth (A = 0) at the start, A = −π² at the end; the reverse is its mirror.
+    # Double harmonic (D32): smooth (A = 0) at the start, A = −π² at the end; the reverse is its mirror.
     _C._mcDoubleHarmonic: _DOUBLE_HARMONIC,
     _C._mcReverseDoubleHarmonic: MirroredLaw("reverse double harmonic", _DOUBLE_HARMONIC),
-    # NC2 (D32, unverified): a no-dwell law — constant ±A over the outer quarters joined by a half cosine.
+    # NC2 (D33, unverified): a no-dwell law — constant ±A over the outer quarters joined by a half cosine.
     _C._mcNC2Curve: HarmonicLaw("NC2", [Piece(0.0, c=1.0), _cos_fall(0.25, 0.5, 1.0, quarters=2),
                                         Piece(0.75, c=-1.0)]),
 }
@@ -215,7 +215,7 @@ LAWS: dict[_eMC_CAM_CURVE, HarmonicLaw | MirroredLaw] = {
 def poly3_coefficients(h: float, v_init_t: float, v_fin_t: float) -> np.ndarray:
     """b1..b3 of the cubic with b_i = h·a_i (§5.4.4): v_init_t = Vinit·T, v_fin_t = Vfin·T [command units].
 
-    Written as the products h·a_i so that h = d_final − d_init = 0 needs no division (D33)."""
+    Written as the products h·a_i so that h = d_final − d_init = 0 needs no division (D34)."""
     return np.array([v_init_t, 3 * h - (2 * v_init_t + v_fin_t), (v_init_t + v_fin_t) - 2 * h])
 
 

@@ -7,7 +7,7 @@ when there is room, EndPointIndex; on error the table keeps its data, except aft
 over every point of every segment at once (one pass per curve type present), so 65,535 points take a few
 milliseconds.
 
-Rules as implemented (decisions D33, D36):
+Rules as implemented (decisions D34, D37):
 * check order: 573E (node array longer than 359 elements), 573C (InitVel, InitAcc, CycleTime), 573F, then node by
   node in index order: 573D (Phase, Distance, Curve, ConnectingVel, ConnectingAcc, PhasePitch) and 5740, then 5741
   (at the node whose points overflow the table), then 5742 while sampling;
@@ -17,7 +17,7 @@ Rules as implemented (decisions D33, D36):
 * members the instruction ignores are not checked: Distance of `_mcConstantLine`, ConnectingVel/ConnectingAcc whose
   enable flag is FALSE;
 * the quintic's A_init from a previous quintic follows ConnectingAccEnable (the source prints ConnectingVelEnable,
-  taken as a typo, D33).
+  taken as a typo, D34).
 """
 
 from __future__ import annotations
@@ -210,7 +210,7 @@ def _trunc7(d: Decimal) -> Decimal:
 
 
 def _in_range(v: float | None, *, positive: bool) -> bool:
-    """abs ≥ 0.001 or 0 (positive: ≥ 0.001 only) on the REAL value, before rounding (D36)."""
+    """abs ≥ 0.001 or 0 (positive: ≥ 0.001 only) on the REAL value, before rounding (D37)."""
     if v is None:
         return False
     if positive:

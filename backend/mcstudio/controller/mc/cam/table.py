@@ -9,7 +9,7 @@ Data model (`omron-group-and-cam.md` §5.0.1, seed 000 lines ~6774 and 17346–1
   MC_SetCamTableProperty ends with 5480;
 * the controller interpolates linearly between two cam data points (seed 000 line 6736).
 
-REAL semantics (D34): phases and distances are stored as float32, exactly as the controller's REAL, so an imported
+REAL semantics (D35): phases and distances are stored as float32, exactly as the controller's REAL, so an imported
 or generated table holds the values the controller would hold (two phases 0.001 apart at 100000 collapse into one,
 as they would there); arithmetic on them is done in float64.
 """
