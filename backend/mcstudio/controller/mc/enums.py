@@ -173,6 +173,41 @@ class _eMC_CAM_CURVE(enum.IntEnum):
     _mcPolynomic5 = 14
 
 
+# synchronized control (omron-axis-instructions.md MC_CamIn … MC_SyncOffsetPosition)
+class _eMC_START_MODE(enum.IntEnum):
+    _mcAbsolutePosition = 0
+    _mcRelativePosition = 1
+
+
+class _eMC_CAM_TRANSITION(enum.IntEnum):
+    _mcCTNone = 0
+
+
+class _eMC_OUT_MODE(enum.IntEnum):
+    _mcStop = 0
+
+
+class _eMC_LINKOPTION(enum.IntEnum):
+    _mcCommandExecution = 0
+    _mcTriggerDetection = 1
+    _mcMasterReach = 2
+
+
+class _eMC_COMBINE_MODE(enum.IntEnum):
+    _mcAddAxes = 0
+    _mcSubAxes = 1
+
+
+class _eMC_CMDPOS_MODE(enum.IntEnum):
+    _mcCount = 0
+
+
+class _eMC_SWITCH_MODE(enum.IntEnum):
+    _mcSwitchDisable = 0
+    _mcPositionBased = 1
+    _mcTimeBased = 2
+
+
 ENUMS: dict[str, type[enum.IntEnum]] = {
     cls.__name__: cls
     for cls in (
@@ -197,6 +232,13 @@ ENUMS: dict[str, type[enum.IntEnum]] = {
         _eMC_EXECUTION_MODE,
         _eMC_PARAMETER_NUMBER,
         _eMC_CAM_CURVE,
+        _eMC_START_MODE,
+        _eMC_CAM_TRANSITION,
+        _eMC_OUT_MODE,
+        _eMC_LINKOPTION,
+        _eMC_COMBINE_MODE,
+        _eMC_CMDPOS_MODE,
+        _eMC_SWITCH_MODE,
     )
 }
 
