@@ -1,4 +1,4 @@
-"""Delta3 inverse/forward kinematics, arm geometry and velocities (`omron-robot-delta3.md` §12; decisions D30.1–D30.5)."""
+"""Delta3 inverse/forward kinematics, arm geometry and velocities (`omron-robot-delta3.md` §12; D30.1–D30.5)."""
 
 from __future__ import annotations
 

@@ -30,6 +30,7 @@ def test_example_robot_passes_with_the_reference_numbers() -> None:
     assert r.values["q_top"] == pytest.approx(7.7882, abs=1e-4)
     assert r.values["beta"] == pytest.approx(59.4016, abs=1e-4)
     assert r.values["Kr"] == pytest.approx(0.2335, abs=1e-4)
+    assert r.params.check(r.workspace) == r
 
 
 def test_manuals_own_numbers() -> None:

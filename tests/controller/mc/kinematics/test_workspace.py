@@ -1,4 +1,4 @@
-"""The Delta3 workspace and its 0.1 mm margin (`omron-robot-delta3.md` §3.2, §12.6; seed 003 L1968–2073; D30.4, D30.7)."""
+"""The Delta3 workspace and its 0.1 mm margin (`omron-robot-delta3.md` §3.2, §12.6; seed 003 L1968–2073; D30.4/.7)."""
 
 from __future__ import annotations
 

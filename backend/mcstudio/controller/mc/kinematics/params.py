@@ -11,9 +11,14 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
+
+if TYPE_CHECKING:
+    from .restrictions import KinCheck
+    from .workspace import Delta3Workspace
 
 # Azimuths of the arms A0, A1, A2 at θ = 0, counter-clockwise from +Xm seen from above (§12.1; decision D30.1).
 # One constant: the manual's top-view figure is lost, so this is the single place to change if it is ever found.
@@ -50,6 +55,12 @@ class Delta3Params:
     def expansion_param(self) -> list[float]:
         """`ExpansionParam[0..7]`."""
         return [self.theta, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
+
+    def check(self, workspace: Delta3Workspace) -> KinCheck:
+        """The geometric restrictions of §3.3 with this workspace (571F); ranges are `check_kin_transform`'s."""
+        from .restrictions import check_restrictions  # restrictions imports this module
+
+        return check_restrictions(self, workspace)
 
     @cached_property
     def Z0(self) -> float:
