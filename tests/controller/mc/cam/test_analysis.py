@@ -53,6 +53,7 @@ def test_segment_and_table_characteristics_in_user_units() -> None:
     assert straight.v_max == pytest.approx(80.0) and straight.a_max == 0
     assert cyc.v_max == pytest.approx(30 * 2 * rate) and cyc.a_max == pytest.approx(30 * 2 * np.pi * rate**2)
     assert (pc.v_max, pc.v_node) == (pytest.approx(240.0), 3) and pc.a_node == 3 and pc.j_node == 3
+    assert (pc.Vm, pc.Am, pc.Jm) == (pytest.approx(2.0), pytest.approx(2 * np.pi), pytest.approx(c_ms.Jm))
     fast = profile_characteristics(profile(), master_velocity=720.0)
     assert (fast.v_max, fast.a_max, fast.j_max) == pytest.approx((2 * pc.v_max, 4 * pc.a_max, 8 * pc.j_max))
 

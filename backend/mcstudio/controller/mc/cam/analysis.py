@@ -97,7 +97,8 @@ class SegmentCharacteristics:
 
 @dataclass(frozen=True)
 class ProfileCharacteristics:
-    """Whole-table maxima [user units] and the node whose segment reaches each one."""
+    """Whole-table maxima [user units] and the node whose segment reaches each one; `Vm`, `Am`, `Jm` are the
+    largest dimensionless values among the segments (each relative to its own rise and span)."""
 
     segments: tuple[SegmentCharacteristics, ...]
     v_max: float
@@ -107,6 +108,9 @@ class ProfileCharacteristics:
     a_node: int
     j_node: int
     master_velocity: float
+    Vm: float
+    Am: float
+    Jm: float
 
 
 def segment_characteristics(s: CamSegment, master_velocity: float) -> SegmentCharacteristics:
@@ -134,7 +138,9 @@ def profile_characteristics(profile: CamProfile, *, master_velocity: float | Non
         return getattr(best, attr), best.node
 
     (v, vn), (a, an), (j, jn) = top("v_max"), top("a_max"), top("j_max")
-    return ProfileCharacteristics(segs, v, a, j, vn, an, jn, speed)
+    dims = [c.dimensionless for c in segs if c.dimensionless is not None]
+    return ProfileCharacteristics(segs, v, a, j, vn, an, jn, speed, Vm=max((d.Vm for d in dims), default=0.0),
+                                  Am=max((d.Am for d in dims), default=0.0), Jm=max((d.Jm for d in dims), default=0.0))
 
 
 @dataclass(frozen=True)

@@ -49,7 +49,7 @@ __all__ = [
     "table_points",
 ]
 
-MAX_NODE_ELEMENTS = 359  # user-defined CamNodes: ARRAY[0..N] with N ≤ 358 (§5.4, seed 000 line 17786)
+MAX_NODE_ELEMENTS = 359  # user-defined CamNodes: ARRAY[0..N] with N ≤ 358 (§5.4, seed 000 line 17821)
 _C = _eMC_CAM_CURVE
 _REAL_MAX = float(np.finfo(REAL).max)
 _CTX = decimal.Context(prec=80)  # REAL spans 1e±38: quantizing to 0.001 needs ~42 digits
