@@ -17,7 +17,7 @@ cycle boundaries) and read the published immutable `Snapshot`.
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -28,6 +28,7 @@ from ..fieldbus.network import Network
 from ..plant.ideal import Mechanics
 from ..project.models import AxisConfig, Project
 from .events import EventLog
+from .mc.cam.table import CamTable
 from .mc.enums import _eMC_AXIS_TYPE
 from .mc.fb.base import FBInputError, FunctionBlock
 from .mc.fb.registry import FB_TYPES
@@ -130,9 +131,12 @@ class Until:
 
 class Controller:
     def __init__(self, project: Project, *, clock: Callable[[], float] = time.monotonic,
-                 library: DeviceLibrary | None = None) -> None:
+                 library: DeviceLibrary | None = None, cams: Mapping[str, CamTable] | None = None) -> None:
+        """`cams`: the project's cam data variables by name (as downloaded); the controller works on copies, so
+        what a program writes into them (MC_GenerateCamTable) is lost with the controller unless saved."""
         self.project = project
         self.library = library
+        self.cams = dict(cams or {})
         self.period_s = project.controller.period_s
         self.clock = clock
         self.events = EventLog()
@@ -143,6 +147,7 @@ class Controller:
         self.network = Network(slaves, sensor_layout(behind), period_s=self.period_s, mechanics=mechanics(behind),
                                auto_restart=project.ethercat.master.auto_restart_slaves, library=library)
         self.mc = MotionModule(project, period_s=self.period_s, events=self.events, network=self.network)
+        self.mc.cam_tables = {name: t.copy() for name, t in self.cams.items()}
         self.cycle = 0
         self.program: dict[int, ProgramEntry] = {}
         self._calls: list[FunctionBlock] | None = None  # the program's instances in call order (cached)

@@ -30,6 +30,7 @@ from ...fastnp import copyto, count_nonzero
 from ...fieldbus.network import ENCODER_REQUIRED, SERVO_REQUIRED
 from . import errors as E
 from .axis import Axis
+from .cam.table import CamTable
 from .enums import AxisState
 from .jobs import JobKind, JobStatus
 from .profile import Planner, PlanningError, ProfileTable
@@ -135,6 +136,7 @@ class MotionModule:
         self._scheduled: dict[int, Axis] = {}  # jobs accepted (or changed) this period, planned in its motion stage
         self.changed: list[Any] = []  # jobs whose status changed this period (their instances are refreshed)
         self.homing_axes: dict[int, Axis] = {}
+        self.cam_tables: dict[str, CamTable] = {}  # cam data variables by name (the kernel fills them)
         self.fb_touched: set[int] = set()  # instances woken or put to sleep since the last snapshot
         self.fb_wakes = 0  # wake-ups so far (the kernel's program stage visits only awake instances while unchanged)
         self.watchers: dict[int, Any] = {}  # instances watching a latch / trigger each period (by instance id)
