@@ -9,11 +9,19 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..controller.mc.enums import _eMC_AXIS_TYPE, _eMC_COUNT_MODE
+from ..controller.mc.enums import (
+    _eMC_AXIS_TYPE,
+    _eMC_AXIS_USE,
+    _eMC_COUNT_MODE,
+    _eMC_GROUP_TYPE,
+    _eMC_GROUP_USE,
+    _eMC_UNITS,
+)
+from ..controller.mc.kinematics import check_kin_transform
 from ..controller.mc.units import POS_MAX_PULSES, fits_distance, fits_position, pulses_per_unit
 from ..fieldbus.config import check_network
 from ..fieldbus.library import DeviceLibrary
-from .models import AxisParameters, Project
+from .models import AxesGroupConfig, AxisParameters, Project
 
 # ErrorParameterCode of the 573B range checks, by member path (A-2.4). Used by MC_WriteAxisParameter.
 RANGE_CODES: dict[str, int] = {
@@ -71,6 +79,14 @@ RANGE_CODES: dict[str, int] = {
 }
 
 MAX_VELOCITY_PULSES = 2_147_483_647  # CPU unit v1.11 (`omron-mc-basics.md` §2.6 footnote)
+# Axes-group operation settings (seed 000 lines 1945–1951): the maximum interpolation velocity is at most twice the
+# upper limit of an axis's maximum velocity, the maximum interpolation acceleration/deceleration 6.4e12 pulse/s².
+MAX_INTERPOLATION_VELOCITY_PULSES = 2 * MAX_VELOCITY_PULSES
+MAX_INTERPOLATION_ACC_PULSES = 6_400_000_000_000.0
+_KIN_PARAM_FIELDS = {"KinParam[0]": "Rf", "KinParam[1]": "Lf", "KinParam[2]": "Rm", "KinParam[3]": "Lm",
+                     "ExpansionParam[0]": "theta", "WorkspaceParam[0]": "workspace.Zu",
+                     "WorkspaceParam[1]": "workspace.Rcy", "WorkspaceParam[2]": "workspace.Hcy",
+                     "WorkspaceParam[3]": "workspace.Rco", "WorkspaceParam[4]": "workspace.Hco"}
 
 
 @dataclass(frozen=True)
@@ -196,5 +212,104 @@ def check_project(project: Project, library: DeviceLibrary | None = None) -> lis
             issues.append(Issue(f"{base}.drive.PositionLoopBandwidth",
                                 f"{d.PositionLoopBandwidth:g} Hz is more than a quarter of the sampling frequency "
                                 f"({1e6 / project.controller.primary_period_us:g} Hz) of the primary period"))
+    issues.extend(check_groups(project))
     issues.extend(Issue(path, msg) for path, msg in check_network(project, library))
     return issues
+
+
+def check_groups(project: Project) -> list[Issue]:
+    """Axes groups: unique names (also against axis names) and numbers; the composition axes exist, are used servo or
+    virtual servo axes (543D otherwise at MC_GroupEnable), match the composition and belong to one group only; the
+    operation settings' pulse limits per member axis; the Delta3 kinematics (MC_SetKinTransform's checks: 5708,
+    570A, 571F; 5706 for the composition: three axes, linear count mode, unit degree)."""
+    issues: list[Issue] = []
+    names: dict[str, int] = {}
+    numbers: dict[int, int] = {}
+    owner: dict[str, int] = {}
+    axis_names = {a.name for a in project.axes}
+    for i, g in enumerate(project.groups):
+        base = f"groups[{i}]"
+        if g.name in names:
+            issues.append(Issue(f"{base}.name", f"duplicate axes group name {g.name!r} (also groups[{names[g.name]}])"))
+        elif g.name in axis_names:
+            issues.append(Issue(f"{base}.name", f"{g.name!r} is already the name of an axis"))
+        names.setdefault(g.name, i)
+        if g.number in numbers:
+            issues.append(Issue(f"{base}.number",
+                                f"duplicate axes group number {g.number} (also groups[{numbers[g.number]}])"))
+        numbers.setdefault(g.number, i)
+        if len(g.axes) != g.axis_count:
+            issues.append(Issue(f"{base}.axes", f"composition {g.composition.name} needs {g.axis_count} axes "
+                                f"(A0…A{g.axis_count - 1}), {len(g.axes)} given"))
+        seen: set[str] = set()
+        for k, name in enumerate(g.axes):
+            path = f"{base}.axes[{k}]"
+            ax = project.axis(name)
+            if name in seen:
+                issues.append(Issue(path, f"axis {name!r} is assigned twice in this group"))
+                continue
+            seen.add(name)
+            if ax is None:
+                issues.append(Issue(path, f"no axis named {name!r}"))
+                continue
+            if ax.type not in (_eMC_AXIS_TYPE._mcServo, _eMC_AXIS_TYPE._mcVirServo):
+                issues.append(Issue(path, f"{name} is {ax.type.name}; only servo and virtual servo axes can be "
+                                    "composition axes", "543D"))
+            if ax.use != _eMC_AXIS_USE._mcUsedAxis and g.use == _eMC_GROUP_USE._mcUsedGroup:
+                issues.append(Issue(path, f"{name} is an unused axis"))
+            if name in owner and owner[name] != i:
+                issues.append(Issue(path, f"{name} is already a composition axis of groups[{owner[name]}]"))
+            owner.setdefault(name, i)
+        issues.extend(_group_operation_issues(project, g, base))
+        if g.kinematics is not None:
+            issues.extend(_kinematics_issues(project, g, base))
+    return issues
+
+
+def _group_operation_issues(project: Project, g: AxesGroupConfig, base: str) -> list[Issue]:
+    out: list[Issue] = []
+    op = g.operation
+    for name in g.axes:
+        ax = project.axis(name)
+        if ax is None:
+            continue
+        rotary = ax.parameters.PosCount.CountMode == _eMC_COUNT_MODE._mcCountModeRotary
+        if rotary and ax.parameters.PosCount.ModuloMaxPosVal <= ax.parameters.PosCount.ModuloMinPosVal:
+            continue  # reported on the axis
+        ppu = pulses_per_unit(ax.parameters)
+        reported = {i.path for i in out}
+        path = f"{base}.operation.MaxInterpolationVel"
+        if op.MaxInterpolationVel * ppu > MAX_INTERPOLATION_VELOCITY_PULSES and path not in reported:
+            out.append(Issue(path, f"{op.MaxInterpolationVel * ppu:.0f} pulse/s on {name}; the limit is "
+                             f"{MAX_INTERPOLATION_VELOCITY_PULSES} pulse/s (2 × the MaxVel limit)"))
+        for field in ("MaxInterpolationAcc", "MaxInterpolationDec"):
+            v = getattr(op, field)
+            path = f"{base}.operation.{field}"
+            if v * ppu > MAX_INTERPOLATION_ACC_PULSES and path not in reported:
+                out.append(Issue(path, f"{v * ppu:.0f} pulse/s² on {name}; the limit is 6.4e12 pulse/s²"))
+    return out
+
+
+def _kinematics_issues(project: Project, g: AxesGroupConfig, base: str) -> list[Issue]:
+    out: list[Issue] = []
+    kin = g.kinematics
+    assert kin is not None
+    path = f"{base}.kinematics"
+    if g.composition != _eMC_GROUP_TYPE._mcXYZ:
+        out.append(Issue(f"{base}.composition", "a Delta3 robot group has the composition _mcXYZ (3 axes)", "5706"))
+    for k, name in enumerate(g.axes):
+        ax = project.axis(name)
+        if ax is None:
+            continue
+        if ax.parameters.PosCount.CountMode != _eMC_COUNT_MODE._mcCountModeLinear:
+            out.append(Issue(f"{base}.axes[{k}]", f"{name}: a robot axis must be in linear count mode", "5706"))
+        if ax.parameters.UnitConversion.UnitDisplay != _eMC_UNITS._mcDeg:
+            out.append(Issue(f"{base}.axes[{k}]", f"{name}: the unit of a Delta3 axis must be degree", "5706"))
+    # MC_SetKinTransform's ranges (5708/570A), then Delta3Params.check's geometric restrictions (571F).
+    params = kin.params()
+    res = check_kin_transform(KinParam=params.kin_param(), ExpansionParam=params.expansion_param(),
+                              WorkspaceParam=kin.workspace_obj().workspace_param())
+    if not res.ok:
+        field = _KIN_PARAM_FIELDS.get(res.parameter, "")
+        out.append(Issue(f"{path}.{field}" if field else path, res.message, f"{res.error_id:04X}"))
+    return out

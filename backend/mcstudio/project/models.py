@@ -19,6 +19,8 @@ from ..controller.mc.enums import (
     _eMC_AXIS_USE,
     _eMC_COUNT_MODE,
     _eMC_DIRECTION,
+    _eMC_GROUP_TYPE,
+    _eMC_GROUP_USE,
     _eMC_HOME_INPUT,
     _eMC_HOMING_MODE,
     _eMC_LIMIT_REVERSE_MODE,
@@ -27,6 +29,7 @@ from ..controller.mc.enums import (
     _eMC_SWLMT_MODE,
     _eMC_UNITS,
 )
+from ..controller.mc.kinematics import Delta3Params, Delta3Workspace
 from ..fieldbus.pdo import SlavePdoConfig
 from ..plant.ideal import DEFAULT_INERTIA, DEFAULT_LOAD_TORQUE, DEFAULT_RATED_TORQUE, DEFAULT_VISCOUS_FRICTION
 from .enumtypes import ManualEnum
@@ -283,6 +286,108 @@ class AxisConfig(_Strict):
         return v
 
 
+GROUP_AXIS_COUNT: dict[_eMC_GROUP_TYPE, int] = {
+    _eMC_GROUP_TYPE._mcXY: 2, _eMC_GROUP_TYPE._mcXYZ: 3, _eMC_GROUP_TYPE._mcXYZU: 4,
+}
+
+
+class GroupOperationSettings(_Strict):
+    """Sysmac Studio's axes-group operation settings (轴组动作设定): the limits of the interpolation instructions
+    (seed 000 lines 1916–1951, 15772; seed 003 line 2405). Units are the composition axes' command units."""
+
+    MaxInterpolationVel: float = Field(
+        800000000.0, gt=0, description="Maximum interpolation velocity [unit/s] (最高插补速度): upper limit of "
+        "Velocity of the interpolation instructions and of the override result"
+    )
+    MaxInterpolationAcc: float = Field(
+        0.0, ge=0, description="Maximum interpolation acceleration [unit/s²] (最大插补加速度); 0 = no limit"
+    )
+    MaxInterpolationDec: float = Field(
+        0.0, ge=0, description="Maximum interpolation deceleration [unit/s²] (最大插补减速度); 0 = no limit"
+    )
+    InterpolationAccDecOver: ManualEnum(_eMC_ACCDECOVER) = Field(
+        _eMC_ACCDECOVER._mcAccDecOverBuffer, description="Interpolation acceleration/deceleration over"
+    )
+    InterpolationVelWarningVal: int = Field(
+        0, ge=0, le=100, description="Interpolation velocity warning value [% of MaxInterpolationVel]; 0 = none"
+    )
+    InterpolationAccWarningVal: int = Field(
+        0, ge=0, le=100, description="Interpolation acceleration warning value [% of MaxInterpolationAcc]; 0 = none"
+    )
+    InterpolationDecWarningVal: int = Field(
+        0, ge=0, le=100, description="Interpolation deceleration warning value [% of MaxInterpolationDec]; 0 = none"
+    )
+    GroupStopMethod: ManualEnum(_eMC_STOP_MODE, (0, 1)) = Field(
+        _eMC_STOP_MODE._mcImmediateStop, description="Axes group stop method (轴组停止方法) on a group error: "
+        "_mcImmediateStop, or _mcDecelerationStop = decelerate each axis to a stop; a robot group (kinematics set) "
+        "always stops immediately"
+    )
+    CorrectionAllowanceRatio: float = Field(
+        0.1, ge=0.0, le=100.0, description="Centre correction allowance ratio [%] (中心点修正容许率) of "
+        "MC_MoveCircular2D in centre mode; 0 = no check (5449 beyond it)"
+    )
+
+
+class Delta3WorkspaceConfig(_Strict):
+    """`_sMC_WORKSPACE_REF.WorkspaceParam[0..4]` of a Delta3 (`kinematics.Delta3Workspace`), in mm."""
+
+    Zu: float = Field(description="z of the workspace's top face [mm], ≤ 0")
+    Rcy: float = Field(description="Cylinder radius [mm]")
+    Hcy: float = Field(description="Cylinder height [mm]")
+    Rco: float = Field(description="Radius of the cone's lower face [mm]")
+    Hco: float = Field(description="Cone height [mm]")
+
+
+class Delta3KinematicsConfig(_Strict):
+    """A Delta3 robot on the group's A0–A2 (`omron-robot-delta3.md` §3.1–§3.3): the studio applies it at start-up as
+    an implicit MC_SetKinTransform. Rf, Lf, Rm, Lm in mm, θ in degrees (`kinematics.Delta3Params`)."""
+
+    type: Literal["delta3"] = "delta3"
+    Rf: float = Field(description="Fixed-frame centre → motor axis [mm] (KinParam[0])")
+    Rm: float = Field(description="Moving-frame centre → forearm joint [mm] (KinParam[2])")
+    Lf: float = Field(description="Upper arm length [mm] (KinParam[1])")
+    Lm: float = Field(description="Forearm length [mm] (KinParam[3])")
+    theta: float = Field(0.0, description="Rotation of the arm layout about the MCS Z axis [deg] (ExpansionParam[0])")
+    workspace: Delta3WorkspaceConfig
+
+    def params(self) -> Delta3Params:
+        return Delta3Params(Rf=self.Rf, Lf=self.Lf, Rm=self.Rm, Lm=self.Lm, theta=self.theta)
+
+    def workspace_obj(self) -> Delta3Workspace:
+        w = self.workspace
+        return Delta3Workspace(Zu=w.Zu, Rcy=w.Rcy, Hcy=w.Hcy, Rco=w.Rco, Hco=w.Hco)
+
+
+class AxesGroupConfig(_Strict):
+    """Axes-group basic settings (轴组基本设定, `_sGROUP_REF.Cfg` / `.Kinematics`) plus the operation settings."""
+
+    name: str = Field(description="Axes group variable name (default MC_Group000 …); an identifier")
+    number: int = Field(ge=0, le=63, description="Axes group number (Cfg.GrpNo, index into _MC_GRP[])")
+    use: ManualEnum(_eMC_GROUP_USE, (1, 2)) = Field(_eMC_GROUP_USE._mcUsedGroup, description="Axes group use")
+    composition: ManualEnum(_eMC_GROUP_TYPE) = Field(
+        _eMC_GROUP_TYPE._mcXY, description="Axis composition (Kinematics.GrpType): _mcXY 2 axes, _mcXYZ 3, _mcXYZU 4"
+    )
+    axes: list[str] = Field(
+        default_factory=list, max_length=4,
+        description="Composition axes: axis names for the logical axes A0, A1 … (one per axis of the composition)"
+    )
+    operation: GroupOperationSettings = Field(default_factory=GroupOperationSettings)
+    kinematics: Delta3KinematicsConfig | None = Field(
+        None, description="Robot kinematics applied at start-up (implicit MC_SetKinTransform); null = none"
+    )
+
+    @field_validator("name")
+    @classmethod
+    def _name_is_identifier(cls, v: str) -> str:
+        if not _IDENT.match(v):
+            raise ValueError("must be an identifier: a letter or _, then letters, digits or _ (max 63)")
+        return v
+
+    @property
+    def axis_count(self) -> int:
+        return GROUP_AXIS_COUNT[self.composition]
+
+
 class ControllerSettings(_Strict):
     primary_period_us: int = Field(1000, description="Primary period [µs]: 125, 250, 500, 1000, 2000, 4000 or 8000")
 
@@ -356,6 +461,10 @@ class Project(_Strict):
     controller: ControllerSettings = Field(default_factory=ControllerSettings)
     axes: list[AxisConfig] = Field(default_factory=list, max_length=256)
     ethercat: EtherCATConfig = Field(default_factory=EtherCATConfig)
+    groups: list[AxesGroupConfig] = Field(default_factory=list, max_length=64, description="Axes groups")
 
     def axis(self, name: str) -> AxisConfig | None:
         return next((a for a in self.axes if a.name == name), None)
+
+    def group(self, name: str) -> AxesGroupConfig | None:
+        return next((g for g in self.groups if g.name == name), None)

@@ -208,6 +208,41 @@ class _eMC_SWITCH_MODE(enum.IntEnum):
     _mcTimeBased = 2
 
 
+# axes groups (omron-mc-basics.md §2.4, omron-group-and-cam.md §0.5; seed 000 lines 1716–1767)
+class _eMC_GROUP_USE(enum.IntEnum):
+    _mcNoneGroup = 0
+    _mcUnusedGroup = 1
+    _mcUsedGroup = 2
+
+
+class _eMC_GROUP_TYPE(enum.IntEnum):
+    """Axis composition of a group (`_sGROUP_REF.Kinematics.GrpType`)."""
+
+    _mcXY = 0
+    _mcXYZ = 1
+    _mcXYZU = 2
+
+
+class _eMC_COORD_SYSTEM(enum.IntEnum):
+    _mcACS = 0
+
+
+class _eMC_TRANSITION_MODE(enum.IntEnum):
+    _mcTMNone = 0
+    _mcTMCornerSuperimposed = 10
+
+
+class _eMC_CIRC_MODE(enum.IntEnum):
+    _mcBorder = 0
+    _mcCenter = 1
+    _mcRadius = 2
+
+
+class _eMC_CIRC_PATHCHOICE(enum.IntEnum):
+    _mcCW = 0
+    _mcCCW = 1
+
+
 ENUMS: dict[str, type[enum.IntEnum]] = {
     cls.__name__: cls
     for cls in (
@@ -239,6 +274,12 @@ ENUMS: dict[str, type[enum.IntEnum]] = {
         _eMC_COMBINE_MODE,
         _eMC_CMDPOS_MODE,
         _eMC_SWITCH_MODE,
+        _eMC_GROUP_USE,
+        _eMC_GROUP_TYPE,
+        _eMC_COORD_SYSTEM,
+        _eMC_TRANSITION_MODE,
+        _eMC_CIRC_MODE,
+        _eMC_CIRC_PATHCHOICE,
     )
 }
 
