@@ -11,12 +11,14 @@ from . import __version__
 
 
 def _cmd_validate(args: argparse.Namespace) -> int:
+    from .project.cams import load_cam_tables
     from .project.io import ProjectError, load_project
 
     ok = True
     for folder in args.dirs:
         try:
             project = load_project(folder)
+            cams = load_cam_tables(project, folder)
         except ProjectError as err:
             ok = False
             print(f"INVALID {folder}: {err.message}", file=sys.stderr)
@@ -25,7 +27,8 @@ def _cmd_validate(args: argparse.Namespace) -> int:
                 print(f"  {issue.path}: {issue.message}{code}", file=sys.stderr)
             continue
         print(f"OK {folder}: '{project.name}', {len(project.axes)} axes, "
-              f"primary period {project.controller.primary_period_us} µs")
+              f"primary period {project.controller.primary_period_us} µs"
+              + (f", {len(cams)} cam tables" if cams else ""))
     return 0 if ok else 1
 
 
@@ -37,6 +40,7 @@ def _cmd_serve(args: argparse.Namespace) -> int:
     from .controller.kernel import Controller
     from .controller.runner import Runner
     from .fieldbus.library import DeviceLibrary
+    from .project.cams import load_cam_tables
     from .project.io import ProjectError, load_project
 
     logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
@@ -44,12 +48,13 @@ def _cmd_serve(args: argparse.Namespace) -> int:
     library = DeviceLibrary(project_dir)
     try:
         project = load_project(project_dir, library)
+        cams = load_cam_tables(project, project_dir)
     except ProjectError as err:
         print(f"cannot start: {err}", file=sys.stderr)
         return 2
     if args.host not in ("127.0.0.1", "localhost", "::1"):
         print(f"WARNING: serving on {args.host}: anyone who reaches this address can move the axes.", file=sys.stderr)
-    runner = Runner(Controller(project, library=library), mode=args.mode)
+    runner = Runner(Controller(project, library=library, cams=cams), mode=args.mode)
     viz = None
     if args.viser_port != 0:
         from .viz.scene import SceneServer
@@ -62,6 +67,8 @@ def _cmd_serve(args: argparse.Namespace) -> int:
     studio = Studio(runner=runner, project_dir=project_dir,
                     projects_root=Path(args.projects_root).resolve() if args.projects_root else project_dir.parent,
                     viz=viz)
+    if viz is not None:
+        viz.attach(runner)  # draws the project's robots and follows the published snapshots
     # the kernel starts once the server is up (uvicorn's start-up work would otherwise hold the GIL in its first periods
     # and count overruns that say nothing about the controller)
     app = create_app(studio, on_startup=runner.start)

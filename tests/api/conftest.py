@@ -11,6 +11,7 @@ from mcstudio.api.app import create_app
 from mcstudio.api.state import Studio
 from mcstudio.controller.kernel import Controller
 from mcstudio.controller.runner import Runner
+from mcstudio.project.cams import load_cam_tables
 from mcstudio.project.io import load_project
 from tests.conftest import DEMO
 
@@ -26,7 +27,8 @@ def project_dir(tmp_path: Path) -> Path:
 @pytest.fixture
 def studio(project_dir: Path) -> Studio:
     """The demo project in a paused controller; without a runner thread requests run inline (deterministic)."""
-    runner = Runner(Controller(load_project(project_dir)), mode="paused")
+    project = load_project(project_dir)
+    runner = Runner(Controller(project, cams=load_cam_tables(project, project_dir)), mode="paused")
     return Studio(runner=runner, project_dir=project_dir, projects_root=project_dir.parent)
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import shutil
 from pathlib import Path
 from typing import Any
 
@@ -253,6 +254,7 @@ def test_projects_list_and_open(client: TestClient, project_dir: Path) -> None:
     doc["name"] = "Other machine"
     doc["axes"] = doc["axes"][:1]
     (other / "project.json").write_text(json.dumps(doc))
+    shutil.copytree(project_dir / "cams", other / "cams")  # the cam tables' data files
     bad = project_dir.parent / "broken"
     bad.mkdir()
     (bad / "project.json").write_text("{")

@@ -16,7 +16,7 @@ from fastapi.staticfiles import StaticFiles
 from .. import __version__
 from . import errors
 from .models import WsHeartbeat, WsSubscribe
-from .routers import axes, controller, ethercat, events, fb, health, live, project
+from .routers import axes, cams, controller, ethercat, events, fb, health, live, project, robots
 from .state import Studio
 
 API_PREFIX = "/api/v1"
@@ -59,7 +59,7 @@ def create_app(studio: Studio, *, static_dir: Path | None = None, cors_origins: 
 
     api = APIRouter(prefix=API_PREFIX)
     for r in (health.router, controller.router, project.router, axes.router, fb.router, events.router, ethercat.router,
-              live.router):
+              live.router, cams.router, robots.router):
         api.include_router(r)
     app.include_router(api)
 

@@ -20,7 +20,7 @@ from .state import Studio
 
 
 def openapi_document() -> dict[str, Any]:
-    studio = Studio(runner=Runner(Controller(Project(name="openapi"))), project_dir=None, projects_root=None)
+    studio = Studio(runner=Runner(Controller(Project(name="openapi"), cams={})), project_dir=None, projects_root=None)
     return create_app(studio, static_dir=Path("/nonexistent")).openapi()
 
 

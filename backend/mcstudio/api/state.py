@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import threading
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -10,10 +11,12 @@ from typing import TYPE_CHECKING, Any
 from .. import __version__
 from ..controller.kernel import Controller, Snapshot
 from ..controller.mc.axis import axis_variables
+from ..controller.mc.cam.table import CamTable
 from ..controller.mc.enums import AxisState
 from ..controller.mc.module import drv_status
 from ..controller.runner import Runner
 from ..fieldbus.library import DeviceLibrary
+from ..project.cams import load_cam_tables, sync_cam_files, tables_for
 from ..project.io import ProjectError, dump_project, load_project, save_project
 from ..project.models import Project
 from .models import AxisSummary, ControllerStatus, FBOut
@@ -125,11 +128,14 @@ class Studio:
                      cycle=snap.cycle)
 
     # ------------------------------------------------------------------ project operations
-    def apply_project(self, project: Project) -> None:
+    def apply_project(self, project: Project, cams: Mapping[str, CamTable] | None = None) -> None:
         """Replace the running controller with one built from `project` (cycle 0, like a download).
 
+        `cams`: the cam data (default: the running controller's, for the tables `project` defines).
         Refused (409) while an axis moves: a download restarts the controller."""
-        controller = Controller(project, library=self.library)
+        if cams is None:
+            cams = tables_for(project, self.controller.cams, self.project)
+        controller = Controller(project, library=self.library, cams=cams)
 
         def swap(current: Controller) -> None:
             moving = [a.name for a in current.mc.axes if a.state in _MOVING]
@@ -148,6 +154,7 @@ class Studio:
         if self.project_dir is None:
             raise ConflictError("this studio was started without a project folder; nothing to save to")
         with self.lock:
+            sync_cam_files(self.project_dir, self.project, self.controller.cams)  # the data before their definitions
             path = save_project(self.project_dir, self.project)
             self.saved_text = dump_project(self.project)
         return path
@@ -181,9 +188,10 @@ class Studio:
         folder = self.resolve_project_name(name)
         library = DeviceLibrary(folder)
         project = load_project(folder, library)
+        cams = load_cam_tables(project, folder)
         previous, self.library = self.library, library
         try:
-            self.apply_project(project)
+            self.apply_project(project, cams)
         except Exception:
             self.library = previous
             raise

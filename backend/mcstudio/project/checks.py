@@ -21,6 +21,7 @@ from ..controller.mc.kinematics import check_kin_transform
 from ..controller.mc.units import POS_MAX_PULSES, fits_distance, fits_position, pulses_per_unit
 from ..fieldbus.config import check_network
 from ..fieldbus.library import DeviceLibrary
+from .cam_models import check_cams
 from .models import AxesGroupConfig, AxisParameters, Project
 
 # ErrorParameterCode of the 573B range checks, by member path. Used by MC_WriteAxisParameter.
@@ -214,6 +215,7 @@ def check_project(project: Project, library: DeviceLibrary | None = None) -> lis
                                 f"({1e6 / project.controller.primary_period_us:g} Hz) of the primary period"))
     issues.extend(check_groups(project))
     issues.extend(Issue(path, msg) for path, msg in check_network(project, library))
+    issues.extend(Issue(path, msg, code) for path, msg, code in check_cams(project.cams))
     return issues
 
 

@@ -32,6 +32,7 @@ from ..controller.mc.enums import (
 from ..controller.mc.kinematics import Delta3Params, Delta3Workspace
 from ..fieldbus.pdo import SlavePdoConfig
 from ..plant.ideal import DEFAULT_INERTIA, DEFAULT_LOAD_TORQUE, DEFAULT_RATED_TORQUE, DEFAULT_VISCOUS_FRICTION
+from .cam_models import MAX_CAMS, CamDefinition
 from .enumtypes import ManualEnum
 
 SCHEMA_VERSION = 1
@@ -462,6 +463,9 @@ class Project(_Strict):
     axes: list[AxisConfig] = Field(default_factory=list, max_length=256)
     ethercat: EtherCATConfig = Field(default_factory=EtherCATConfig)
     groups: list[AxesGroupConfig] = Field(default_factory=list, max_length=64, description="Axes groups")
+    cams: list[CamDefinition] = Field(
+        default_factory=list, max_length=MAX_CAMS,
+        description="Cam tables (cam data variables); their points are in cams/<name>.csv")
 
     def axis(self, name: str) -> AxisConfig | None:
         return next((a for a in self.axes if a.name == name), None)

@@ -57,7 +57,7 @@ def post_reset_errors(studio: Studio = Depends(get_studio)) -> ControllerStatus:
              summary="Reload the project into a fresh controller (cycle 0)")
 def post_reset(studio: Studio = Depends(get_studio)) -> ControllerStatus:
     project = studio.project
-    controller = Controller(project, library=studio.library)
+    controller = Controller(project, library=studio.library, cams=studio.controller.cams)
     studio.runner.replace_controller(controller)
     if studio.viz is not None:
         studio.viz.rebuild(controller)
