@@ -26,6 +26,9 @@ TABLE: dict[str, tuple[Verdict, ...]] = {
     "move": (_SV, _OK, _OK, _OK, _OK, _MX, _AB, _AB, _CO),
     # MC_MoveJog, MC_Home, MC_HomeWithParameter, MC_GearInPos: only from Standstill
     "standstill_only": (_SV, _OK, _MX, _MX, _MX, _MX, _AB, _AB, _CO),
+    # MC_CamOut, MC_GearOut: only while synchronized (the running instruction is checked by the instruction);
+    # elsewhere 543A "Synchronization Stopped" (A-1 #27; rows *6/*7)
+    "sync_out": (_SV, 0x543A, 0x543A, 0x543A, _OK, 0x543A, _AB, _AB, _CO),
     # MC_Stop: A → A (accepted, Done), ErrorStop → CommandAborted
     "stop": (_OK, _OK, _OK, _OK, _OK, _OK, _OK, _AB, _CO),
     # MC_ImmediateStop: any state (→ ErrorStop)

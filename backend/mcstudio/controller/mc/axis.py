@@ -382,6 +382,17 @@ class Axis(AxisPlanning):
         if self.buffered is not None:
             return E.E_BUFFER_LIMIT
         blending = mode >= _eMC_BUFFER_MODE._mcBlendingLow
+        if cur.kind == JobKind.SYNC:
+            # onto synchronized control: Buffered only onto MC_CamIn (taking over at EndOfProfile), blending only
+            # MC_CamIn onto MC_CamIn with the same master and ReferenceType; onto MC_GearIn, MC_GearInPos,
+            # MC_MoveLink and MC_CombineAxes only Aborting (their rules, decision D39)
+            law = cur.info["law"]
+            nxt = job.info.get("law")
+            if law.kind != "cam" or (blending and (nxt is None or not law.can_blend_into(nxt))):
+                return E.E_MULTIEXEC_DISABLED
+            job.status = JobStatus.WAITING
+            self.buffered = job
+            return 0
         if blending and not (cur.blendable and job.blendable):
             # Blending onto an instruction that does not accept it (MC_MoveVelocity, MC_MoveJog,
             # MC_MoveZeroPosition, MC_MoveFeed): multi-execution disabled (decision D18)
@@ -407,6 +418,8 @@ class Axis(AxisPlanning):
             JobKind.STOP: S.Stopping,
             JobKind.RESET_FE: S.Stopping,
             JobKind.HOMING: S.Homing,
+            JobKind.SYNC: S.Synchronized,
+            JobKind.SYNC_OUT: S.Discrete,
         }.get(job.kind)
         if job.kind == JobKind.RESET_FE and self.state == S.Standstill:
             state = None  # MC_ResetFollowingError on a standing axis keeps Standstill (A-3.4: B → B; C/D/E → G)
@@ -422,6 +435,22 @@ class Axis(AxisPlanning):
             self._end_job(self.current, JobStatus.ABORTED)
         if job is not None:
             self._start(job)
+
+    def sync_finished(self, law: Any) -> None:
+        """Synchronized control ended by itself (a non-periodic cam output its end point, MC_MoveLink arrived, a
+        periodic cam finished the cycle in which a successor was buffered): Done, then the buffered instruction —
+        a blended MC_CamIn starts at once from where this one ended."""
+        job = law.job
+        self._end_job(job, JobStatus.DONE)
+        nxt = self.buffered
+        if nxt is not None:
+            nlaw = nxt.info.get("law")
+            if nlaw is not None and nxt.buffer_mode >= _eMC_BUFFER_MODE._mcBlendingLow:
+                nlaw.blend_from = float(self.m.cmd_pos[self.i])
+            self._promote_buffered()
+        else:
+            self.m.prof_vel[self.i] = 0.0
+            self._set_state(self._rest_state())
 
     def replan(self, job: Job) -> None:
         """Re-execution changed the parameters of a running job."""

@@ -79,7 +79,7 @@ class AxisPlanning:
             v = max(-op.MaxVel, min(op.MaxVel, v))
             return planner.velocity(p0=p0, v0=v0, a0=a0, target_velocity=v, acceleration=job.acceleration,
                                     deceleration=job.deceleration, jerk=job.jerk)
-        if kind == JobKind.STOP:
+        if kind in (JobKind.STOP, JobKind.SYNC_OUT):
             return planner.stop(p0=p0, v0=v0, a0=a0, deceleration=job.deceleration, jerk=job.jerk)
         if kind == JobKind.ERROR_STOP:
             stop_at = job.info.get("stop_at")
@@ -207,7 +207,7 @@ class AxisPlanning:
         self._end_job(job, JobStatus.DONE)  # type: ignore[attr-defined]
         if job.kind == JobKind.ERROR_STOP:
             return False
-        if job.kind == JobKind.POSITION and self.buffered is not None:
+        if job.kind in (JobKind.POSITION, JobKind.SYNC_OUT) and self.buffered is not None:
             self._promote_buffered()  # type: ignore[attr-defined]
         else:
             self._set_state(self._rest_state())  # type: ignore[attr-defined]

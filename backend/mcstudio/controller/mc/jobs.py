@@ -30,9 +30,11 @@ class JobKind(enum.IntEnum):
     RESET_FE = 5  # Stopping: MC_ResetFollowingError
     HOMING = 6  # Homing: MC_Home, MC_HomeWithParameter (driven by a Homing sequence)
     TORQUE = 7  # Continuous: MC_TorqueControl (the drive in CST; torque stage of the MC module, no profile)
+    SYNC = 8  # Synchronized: MC_CamIn, MC_GearIn, MC_GearInPos, MC_MoveLink, MC_CombineAxes (a law in `sync.py`)
+    SYNC_OUT = 9  # Discrete: MC_CamOut, MC_GearOut — decelerate the slave to 0 (Done at velocity 0)
 
 
-MOTION_KINDS = (JobKind.POSITION, JobKind.VELOCITY, JobKind.JOG, JobKind.TORQUE)
+MOTION_KINDS = (JobKind.POSITION, JobKind.VELOCITY, JobKind.JOG, JobKind.TORQUE, JobKind.SYNC, JobKind.SYNC_OUT)
 
 
 @dataclass(eq=False, slots=True)

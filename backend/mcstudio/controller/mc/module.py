@@ -40,6 +40,7 @@ if TYPE_CHECKING:
     from ...fieldbus.network import Network
     from ...project.models import Project
     from ..events import EventLog
+    from .sync import Law
 
 # DrvStatus bits (order of `_sAXIS_REF_STA_DRV`, omron-mc-basics.md §2.3)
 DRV_BITS = ("ServoOn", "Ready", "MainPower", "P_OT", "N_OT", "HomeSw", "Home", "ImdStop", "Latch1", "Latch2",
@@ -137,6 +138,8 @@ class MotionModule:
         self.changed: list[Any] = []  # jobs whose status changed this period (their instances are refreshed)
         self.homing_axes: dict[int, Axis] = {}
         self.cam_tables: dict[str, CamTable] = {}  # cam data variables by name (the kernel fills them)
+        self.sync_laws: dict[int, Law] = {}  # slaves under synchronized control (sync.py), by axis number
+        self._sync_order: list[int] = []  # their axis numbers in ascending order (masters with lower numbers first)
         self.fb_touched: set[int] = set()  # instances woken or put to sleep since the last snapshot
         self.fb_wakes = 0  # wake-ups so far (the kernel's program stage visits only awake instances while unchanged)
         self.watchers: dict[int, Any] = {}  # instances watching a latch / trigger each period (by instance id)
@@ -585,6 +588,8 @@ class MotionModule:
                 self.notify[i] = axis.on_profile_finished(job)
         if self._n_trq:
             self._torque_stage(cycle, T)
+        if self.sync_laws:
+            self._sync_stage(T)
         # derived command values (manual §2.3: differences of command positions / velocities)
         vel, accdec, jerk, w = self._dv, self._da, self._dj, self._dw
         T0 = self._T0
@@ -637,6 +642,9 @@ class MotionModule:
         if job.kind == JobKind.TORQUE:
             self._start_torque(i, job, start_cycle)
             return
+        if job.kind == JobKind.SYNC:
+            self._start_sync(i, axis, job, own_call=start_cycle is None)
+            return
         p0, v0, a0 = float(self.cmd_pos[i]), float(self.prof_vel[i]), float(self.prof_acc[i])
         try:
             seg = axis.plan_job(job, p0, v0, a0)
@@ -663,6 +671,70 @@ class MotionModule:
         job.status = JobStatus.ACTIVE
         job.replan = False
         job.cmd_done_cycle = -1
+
+    # ------------------------------------------------------------------ synchronized control (sync.py)
+    def _start_sync(self, i: int, axis: Axis, job: Any, *, own_call: bool) -> None:
+        law = job.info["law"]
+        if own_call:
+            job.info["quiet_cycle"] = self.cycle  # Active shows at the instance's next call (one period after Busy)
+        if job.replan:  # re-execution (MC_CamIn switching tables, MC_GearIn a new ratio): the law was updated
+            job.replan = False
+            return
+        code = law.begin()
+        if code:
+            owner = job.owner
+            axis.raise_error(code, source=owner.label if owner is not None else None)
+            if owner is not None and job.status == JobStatus.ABORTED:
+                job.status = JobStatus.ERROR  # the instruction that could not start shows the error
+                job.error_id = code
+            return
+        self.profiles.clear(i)
+        self.notify[i] = False
+        self.step_accdec[i] = False
+        self.target_checked[i] = False
+        self.stop_dec[i] = axis.params.Operation.MaxDec  # a slave error stops at the maximum deceleration
+        self.sync_laws[i] = law
+        self._sync_order = sorted(self.sync_laws)
+        job.status = JobStatus.ACTIVE
+        if law.flags_changed:
+            law.flags_changed = False
+            self.changed.append(job)
+
+    def _sync_stage(self, T: float) -> None:
+        """Slaves compute their command position from their masters, in ascending axis number (so that a slave
+        using `_mcLatestCommand` sees its master's value of this period). The profile velocity is the difference
+        of command positions; the profile acceleration is kept 0 (an instruction taking over starts from the
+        slave's velocity; decision D38)."""
+        laws = self.sync_laws
+        cmd, pv, pa = self.cmd_pos, self.prof_vel, self.prof_acc
+        finished: list[Law] = []
+        stale: list[int] = []
+        for i in self._sync_order:
+            law = laws[i]
+            job = law.job
+            if law.slave.current is not job or job.status != JobStatus.ACTIVE:
+                stale.append(i)
+                continue
+            pos = law.step()
+            pv[i] = (pos - cmd[i]) / T
+            pa[i] = 0.0
+            cmd[i] = pos
+            if law.flags_changed:
+                law.flags_changed = False
+                self.changed.append(job)
+                if job.owner is not None:
+                    job.owner.wake()
+            if law.finished:
+                finished.append(law)
+        if stale:
+            for i in stale:
+                del laws[i]  # aborted, stopped or replaced by another instruction
+            self._sync_order = sorted(laws)
+        for law in finished:
+            if laws.get(law.slave.i) is law:
+                del laws[law.slave.i]
+                self._sync_order = sorted(laws)
+            law.slave.sync_finished(law)
 
     # ------------------------------------------------------------------ stage 5: outputs
     def outputs(self) -> None:

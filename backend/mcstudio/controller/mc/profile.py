@@ -168,6 +168,40 @@ class Planner:
                          acc=deceleration, dec=deceleration, jerk=jerk, forward=v0 > 0)
 
 
+    def timed(self, *, p0: float, v0: float, target: float, v_end: float, velocity: float, acceleration: float,
+              deceleration: float, duration: float) -> Segments | None:
+        """A move from (p0, v0) that arrives at `target` with `v_end` after exactly `duration` seconds, within
+        |v| ≤ velocity and the acceleration/deceleration limits (MC_GearInPos catch-up); None when no such profile
+        exists (too short a time for the limits, or the limits cannot fill it)."""
+        if duration <= 0:
+            return None
+        inp = self._inp
+        acc = acceleration if acceleration > 0 else self._step_limit(velocity)
+        dec = deceleration if deceleration > 0 else self._step_limit(velocity)
+        inp.control_interface = ControlInterface.Position
+        inp.current_position = [p0]
+        inp.current_velocity = [_clean(v0)]
+        inp.current_acceleration = [0.0]
+        inp.target_position = [target]
+        inp.target_velocity = [v_end]
+        inp.target_acceleration = [0.0]
+        vmax = max(abs(velocity), abs(v0), abs(v_end))
+        inp.max_velocity = [vmax]
+        inp.max_acceleration = [max(acc, dec)]
+        inp.min_acceleration = [-max(acc, dec)]
+        inp.max_jerk = [math.inf]
+        inp.minimum_duration = duration
+        try:
+            result = self._otg.calculate(inp, self._traj)
+        finally:
+            inp.minimum_duration = None
+        if result not in (Result.Working, Result.Finished):
+            return None
+        if abs(self._traj.duration - duration) > max(1e-9, 1e-6 * duration):
+            return None  # the limits do not allow arriving in time
+        return _segments_from_trajectory(self._traj, target_p=target)
+
+
 def hold(position: float) -> Segments:
     return Segments([0.0], [position], [0.0], [0.0], [0.0], 0.0, position, 0.0)
 

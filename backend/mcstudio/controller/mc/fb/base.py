@@ -114,9 +114,10 @@ class Var:
             if not -32768 <= value <= 32767:
                 raise FBInputError(self.name, f"{value} is outside the INT range of an enumeration")
             return value
-        if t in ("_sAXIS_REF", "_sGROUP_REF"):
+        if t in ("_sAXIS_REF", "_sGROUP_REF", "_sMC_CAM_REF"):
             if not isinstance(value, str) or not value:
-                raise FBInputError(self.name, f"expected the name of an axis variable, got {value!r}")
+                what = "a cam data variable (cam table)" if t == "_sMC_CAM_REF" else "an axis variable"
+                raise FBInputError(self.name, f"expected the name of {what}, got {value!r}")
             return value
         if t == "ANY_NUM":  # MC_Write SettingValue: a number or an enumerator name, checked by the instruction
             if isinstance(value, bool) or not isinstance(value, int | float | str):

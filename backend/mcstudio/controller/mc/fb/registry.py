@@ -8,8 +8,9 @@ from .common import COMMON_CLASSES
 from .homing_fb import HOMING_CLASSES
 from .latch import LATCH_CLASSES
 from .single_axis import FB_CLASSES
+from .sync_fb import SYNC_CLASSES
 from .torque import TORQUE_CLASSES
 
 ALL_CLASSES: tuple[type[FunctionBlock], ...] = (*FB_CLASSES, *ADMIN_CLASSES, *HOMING_CLASSES, *COMMON_CLASSES,
-                                                *LATCH_CLASSES, *TORQUE_CLASSES)
+                                                *LATCH_CLASSES, *TORQUE_CLASSES, *SYNC_CLASSES)
 FB_TYPES: dict[str, type[FunctionBlock]] = {cls.DEF.name: cls for cls in ALL_CLASSES}
