@@ -7,9 +7,9 @@ Spec: omron-mc-basics.md §A-3.4 "Axis instructions on servo axes and virtual se
 disabled" (A-1 #29, decision D6), 543D "axis type mismatch" on encoder axes (A-1 #30).
 
 Each case brings MC_Axis000 into the state of a column, executes the instruction once and checks the instance's
-outputs, its ErrorID and the axis state one period later against the table cell. Columns E (Synchronized) and
-I (Coordinated) need the cam and axes-group instructions (later issues); they are listed as skipped cases so the
-table stays complete. MC_TorqueControl and MC_SetTorqueLimit rows run once those instructions are registered.
+outputs, its ErrorID and the axis state one period later against the table cell. Column E (Synchronized) runs
+with MC_Axis000 geared to a moving MC_Axis001 (MC_GearIn); column I (Coordinated) needs the axes-group instructions
+and is listed as skipped cases so the table stays complete. Rows of instructions not registered yet are skipped.
 """
 
 from __future__ import annotations
@@ -21,6 +21,7 @@ from typing import Any
 import pytest
 
 from mcstudio.controller.kernel import Controller, Until
+from mcstudio.controller.mc.cam.table import CamTable
 from mcstudio.controller.mc.enums import AxisState
 from mcstudio.controller.mc.fb.base import FunctionBlock
 from mcstudio.controller.mc.fb.registry import FB_TYPES
@@ -53,10 +54,21 @@ class Rig:
 
 def _controller(encoder_axis: bool = False) -> Controller:
     p = axis_project(sensors=SENSORS, encoder="absolute", Homing=HOMING)  # absolute: home defined at servo ON
+    third = p.axes[1].model_copy(deep=True)
+    third.name, third.number = "MC_Axis002", 2
+    p.axes.append(third)  # the auxiliary axis of MC_CombineAxes
     if encoder_axis:
         p.axes[1].type = "_mcEncdr"  # type: ignore[assignment]
         p.axes[1].node_address = 2
-    return Controller(p)
+    return Controller(p, cams={"Cam": CamTable.from_points([0.0, 100.0], [0.0, 50.0])})
+
+
+def _move_master(c: Controller) -> None:
+    """MC_Axis001 (virtual) moving at 10 u/s: the master of the synchronized instructions."""
+    if not c.mc.axes[1].servo_on:
+        power_on(c, "MC_Axis001")
+    c.fb("MC_MoveVelocity", Axis="MC_Axis001", Execute=True, Velocity=10.0, Acceleration=0.0, Deceleration=0.0)
+    c.step(3)
 
 
 def _state(col: str) -> Rig:
@@ -72,6 +84,9 @@ def _state(col: str) -> Rig:
     elif col == "D":
         run = c.fb("MC_MoveVelocity", Axis=AX, Execute=True, Velocity=10.0, Acceleration=1000.0,
                    Deceleration=1000.0)
+    elif col == "E":
+        _move_master(c)
+        run = c.fb("MC_GearIn", Master="MC_Axis001", Slave=AX, Execute=True)
     elif col == "F":
         run = c.fb("MC_Home", Axis=AX, Execute=True)
     elif col == "G":
@@ -109,6 +124,13 @@ def _abort_trigger(rig: Rig, axis: str = AX) -> FunctionBlock:
     return rig.c.fb("MC_AbortTrigger", Axis=axis, Execute=True, TriggerInput=EXT1)
 
 
+def _gear_in_pos(rig: Rig, axis: str = AX) -> FunctionBlock:
+    # MC_GearInPos needs a moving master (5476 otherwise): start it, then execute
+    _move_master(rig.c)
+    return rig.c.fb("MC_GearInPos", Master="MC_Axis001", Slave=axis, Execute=True, MasterSyncPosition=1000.0,
+                    SlaveSyncPosition=10.0, Velocity=100.0, Acceleration=1000.0, Deceleration=1000.0)
+
+
 ROWS: dict[str, Callable[..., FunctionBlock]] = {
     "MC_Power(Enable=TRUE)": _execute("MC_Power", Enable=True),
     "MC_Power(Enable=FALSE)": _power_off,
@@ -136,6 +158,17 @@ ROWS: dict[str, Callable[..., FunctionBlock]] = {
     "MC_AxesObserve": lambda rig, axis=AX: rig.c.fb("MC_AxesObserve", Master="MC_Axis001", Slave=axis, Enable=True,
                                                     PermittedDeviation=1.0),
     "MC_Reset": _execute("MC_Reset", Execute=True),
+    "MC_CamIn": lambda rig, axis=AX: rig.c.fb("MC_CamIn", Master="MC_Axis001", Slave=axis, CamTable="Cam",
+                                              Execute=True, Periodic=True),
+    "MC_CamOut": lambda rig, axis=AX: rig.c.fb("MC_CamOut", Slave=axis, Execute=True, Deceleration=100.0),
+    "MC_GearIn": lambda rig, axis=AX: rig.c.fb("MC_GearIn", Master="MC_Axis001", Slave=axis, Execute=True),
+    "MC_GearInPos": _gear_in_pos,
+    "MC_GearOut": lambda rig, axis=AX: rig.c.fb("MC_GearOut", Slave=axis, Execute=True, Deceleration=100.0),
+    "MC_MoveLink": lambda rig, axis=AX: rig.c.fb("MC_MoveLink", Master="MC_Axis001", Slave=axis, Execute=True,
+                                                 SlaveDistance=5.0, MasterDistance=10.0),
+    "MC_CombineAxes": lambda rig, axis=AX: rig.c.fb("MC_CombineAxes", Master="MC_Axis001", Auxiliary="MC_Axis002",
+                                                    Slave=axis, Execute=True, ReferenceTypeMaster="_mcFeedback",
+                                                    ReferenceTypeAuxiliary="_mcFeedback"),
     "MC_ChangeAxisUse(used→unused)": _execute("MC_ChangeAxisUse", Execute=True, AxisUse="_mcUnusedAxis"),
 }
 
@@ -171,6 +204,32 @@ TABLE: dict[str, dict[str, tuple[str, Any]]] = {
                                       **{col: ("H", 0x5702) for col in "CDFGH"}},
 }
 TABLE["MC_Reset"]["H"] = ("B", "ok")  # *10: the reset succeeds with the servo ON → Standstill
+# synchronized control (A-3.4 rows MC_CamIn … MC_CombineAxes): like the other motion instructions; MC_GearInPos only
+# from Standstill; MC_CamOut/MC_GearOut only while their instruction runs (*6/*7), else 543A Synchronization Stopped
+SYNC_STOPPED = 0x543A
+for _n in ("MC_CamIn", "MC_GearIn", "MC_MoveLink", "MC_CombineAxes"):
+    TABLE[_n] = {**MOTION, "B": ("E", "ok"), "C": ("E", "ok"), "D": ("E", "ok")}
+TABLE["MC_GearInPos"] = {**MOTION, "B": ("E", "ok"), "C": ("H", MX), "D": ("H", MX)}
+for _n in ("MC_CamOut", "MC_GearOut"):
+    TABLE[_n] = {**MOTION, **{col: ("H", SYNC_STOPPED) for col in "BCDF"}}
+# column E (Synchronized: MC_GearIn running), A-3.4 column E
+COLUMN_E: dict[str, tuple[str, Any]] = {
+    "MC_Power(Enable=TRUE)": ("E", "ok"), "MC_Power(Enable=FALSE)": ("A", "ok"),
+    "MC_MoveJog": ("H", MX), "MC_Home": ("H", MX), "MC_HomeWithParameter": ("H", MX),
+    "MC_Move": ("C", "ok"), "MC_MoveAbsolute": ("C", "ok"), "MC_MoveRelative": ("C", "ok"),
+    "MC_MoveVelocity": ("D", "ok"), "MC_MoveZeroPosition": ("C", "ok"), "MC_MoveFeed": ("C", "ok"),  # *3: target
+    "MC_TorqueControl": ("D", "ok"), "MC_Stop": ("G", "ok"), "MC_ImmediateStop": ("H", "ok"),
+    "MC_SetPosition": ("H", MX), "MC_ResetFollowingError": ("G", "ok"),
+    **{n: ("E", "ok") for n in ("MC_SetOverride", "MC_SetTorqueLimit", "MC_ZoneSwitch", "MC_AxesObserve", "MC_Reset",
+                                "MC_TouchProbe", "MC_AbortTrigger", "MC_CamIn", "MC_GearIn", "MC_MoveLink",
+                                "MC_CombineAxes")},
+    "MC_GearInPos": ("H", MX),
+    "MC_CamOut": ("H", SYNC_STOPPED),  # *6: MC_GearIn, not MC_CamIn, is running
+    "MC_GearOut": ("C", "ok"),  # *7
+    "MC_ChangeAxisUse(used→unused)": ("H", 0x5702),
+}
+for _row, _cell in COLUMN_E.items():
+    TABLE[_row]["E"] = _cell
 
 _ENABLE_TYPE = {"MC_Power", "MC_MoveJog", "MC_SetOverride", "MC_SetTorqueLimit", "MC_ZoneSwitch", "MC_AxesObserve"}
 
@@ -180,10 +239,9 @@ def _cases() -> list[Any]:
     for row, cells in TABLE.items():
         for col in "ABCDEFGHI":
             cid = f"{row}-{col}"
-            if col in "EI":
-                why = "Synchronized needs the cam/gear instructions" if col == "E" else \
-                    "Coordinated needs axes groups"
-                out.append(pytest.param(row, col, None, id=cid, marks=pytest.mark.skip(reason=f"{why} (later issue)")))
+            if col == "I":
+                out.append(pytest.param(row, col, None, id=cid, marks=pytest.mark.skip(
+                    reason="Coordinated needs axes groups (later issue)")))
             else:
                 out.append(pytest.param(row, col, cells[col], id=cid))
     return out
