@@ -205,7 +205,7 @@ export function Workspace() {
       </Tabs>
       {vizMounted && (
         <Box style={{ flex: 1, minHeight: 0, display: active === TAB_3D ? "flex" : "none" }}>
-          <VizView />
+          <VizView active={active === TAB_3D} />
         </Box>
       )}
       <DiscardModal axis={confirmAxis} onClose={() => setConfirmAxis(null)} />

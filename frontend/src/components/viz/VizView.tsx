@@ -2,9 +2,10 @@ import { Anchor, Box, Center, Code, Group, Loader, Stack, Text } from "@mantine/
 import { IconBox, IconExternalLink } from "@tabler/icons-react";
 import { useStore } from "../../store/createStore";
 import { vizStore } from "../../store/catalog";
+import { RobotPanel } from "./RobotPanel";
 
-/** The 3D view: the viser web app of the backend, in an iframe on its own port. */
-export function VizView() {
+/** The 3D view: the viser web app of the backend, in an iframe on its own port, next to the robots' status. */
+export function VizView({ active = true }: { active?: boolean }) {
   const { status, data, error } = useStore(vizStore, (s) => s);
 
   if (status === "loading") {
@@ -47,14 +48,17 @@ export function VizView() {
           </Group>
         </Anchor>
       </Group>
-      <Box style={{ flex: 1, minHeight: 0 }}>
-        <iframe
-          data-testid="viser-frame"
-          title="3D view"
-          src={src}
-          style={{ border: 0, width: "100%", height: "100%", display: "block" }}
-        />
-      </Box>
+      <Group gap={0} align="stretch" wrap="nowrap" style={{ flex: 1, minHeight: 0 }}>
+        <Box style={{ flex: 1, minWidth: 0, minHeight: 0 }}>
+          <iframe
+            data-testid="viser-frame"
+            title="3D view"
+            src={src}
+            style={{ border: 0, width: "100%", height: "100%", display: "block" }}
+          />
+        </Box>
+        <RobotPanel active={active} />
+      </Group>
     </Stack>
   );
 }

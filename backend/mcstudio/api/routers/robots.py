@@ -1,0 +1,82 @@
+"""The robots of the 3-D view: each Delta3 group's joint feedback, TCP (forward kinematics) and alarm.
+
+`GET /api/v1/viz/robots` reads the latest published snapshot (like `/snapshot`) — the studio's 3D tab polls it for
+its status panel; scripts get the TCP of every robot in one call without knowing the group names.
+"""
+
+from __future__ import annotations
+
+import math
+
+from fastapi import APIRouter, Depends
+from pydantic import BaseModel, ConfigDict, Field
+
+from ...viz.robots import read_robot, robot_specs
+from ..deps import get_studio
+from ..state import Studio
+
+router = APIRouter(tags=["viz"])
+
+
+class _Model(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+
+class RobotAxisOut(_Model):
+    logical: str = Field(description="Logical axis of the group: A0, A1, A2")
+    name: str = Field(description="Axis variable name")
+    act_pos: float | None = Field(description="Act.Pos [deg]; null when the axis is not in the controller")
+    state: str = Field(description="Axis state (Status member that is TRUE): Standstill, Discrete, ErrorStop …")
+    error_code: str = Field(description="MFaultLvl.Code (4 hex digits), 0000 = none")
+
+
+class RobotAlarm(_Model):
+    code: str = Field(description="ErrorID (4 hex digits)")
+    message: str
+
+
+class Delta3ParamsOut(_Model):
+    Rf: float
+    Rm: float
+    Lf: float
+    Lm: float
+    theta: float
+
+
+class RobotOut(_Model):
+    group: str = Field(description="Axes group variable name")
+    kinematics: Delta3ParamsOut = Field(description="Delta3 parameters [mm, deg]")
+    axes: list[RobotAxisOut]
+    tcp: list[float] | None = Field(description="TCP feedback position [x, y, z] in the MCS [mm] by forward "
+                                    "kinematics of the axes' Act.Pos; null when it has no solution")
+    kin_status: str = Field(description="OK, UNREACHABLE (no forward solution, 570F) or NOT_FINITE")
+    alarm: RobotAlarm | None = Field(description="Set while the group or one of its axes is in ErrorStop")
+
+
+class RobotsOut(_Model):
+    cycle: int = Field(description="Cycle of the snapshot read")
+    robots: list[RobotOut] = Field(description="Axes groups with Delta3 kinematics; empty when the project has none")
+
+
+@router.get("/viz/robots", response_model=RobotsOut,
+            summary="The robots of the 3D view: joint feedback, TCP and alarm of each Delta3 group")
+def get_robots(studio: Studio = Depends(get_studio)) -> RobotsOut:
+    snap = studio.runner.snapshot
+    controller = studio.controller
+    index = {a.name: int(a.i) for a in controller.mc.axes}
+    out = []
+    for spec in robot_specs(controller.project):
+        r = read_robot(spec, snap, tuple(index.get(n) for n in spec.axes))  # type: ignore[arg-type]
+        alarm = r.alarm
+        p = spec.params
+        out.append(RobotOut(
+            group=spec.group,
+            kinematics=Delta3ParamsOut(Rf=p.Rf, Rm=p.Rm, Lf=p.Lf, Lm=p.Lm, theta=p.theta),
+            axes=[RobotAxisOut(logical=a.logical, name=a.name,
+                               act_pos=a.act_pos if math.isfinite(a.act_pos) else None, state=a.state,
+                               error_code=f"{a.error_code:04X}") for a in r.axes],
+            tcp=[round(v, 6) for v in r.tcp] if r.tcp is not None else None,
+            kin_status=r.kin_status.name,
+            alarm=RobotAlarm(code=f"{alarm[0]:04X}", message=alarm[1]) if alarm is not None else None,
+        ))
+    return RobotsOut(cycle=snap.cycle, robots=out)

@@ -1,0 +1,128 @@
+"""Which robots a project has and how they stand in a snapshot — shared by the 3-D view and the REST read-out.
+
+`robot_specs(project)` lists the Delta3 robots (axes groups with `kinematics.type == "delta3"`); `read_robot(spec,
+snapshot)` takes the member axes' **feedback** positions (Act.Pos, degrees) and their states from a published
+snapshot (never from the kernel) and adds the TCP by forward kinematics. Pure functions: no viser, no threads.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from ..controller.mc.enums import AxisState
+from ..controller.mc.kinematics import Delta3Params, Delta3Workspace, Status, UserCoordSystem, forward_point
+
+if TYPE_CHECKING:
+    from ..controller.kernel import Snapshot
+    from ..project.models import Project
+
+LOGICAL = ("A0", "A1", "A2")
+
+
+@dataclass(frozen=True)
+class RobotSpec:
+    """A Delta3 robot of the project: its axes group, the axes on A0–A2, kinematics and workspace (mm, deg)."""
+
+    group: str
+    axes: tuple[str, str, str]
+    params: Delta3Params
+    workspace: Delta3Workspace | None = None
+    # user coordinate systems by CSID (MC_DefineCoordSystem); the robot instructions will fill these in
+    coord_systems: Mapping[int, UserCoordSystem] = field(default_factory=dict)
+
+
+def robot_specs(project: Project) -> list[RobotSpec]:
+    """The project's Delta3 robots: used axes groups with Delta3 kinematics and three composition axes."""
+    out = []
+    for g in getattr(project, "groups", None) or []:
+        kin = getattr(g, "kinematics", None)
+        if kin is None or getattr(kin, "type", None) != "delta3" or len(g.axes) < 3:
+            continue
+        if getattr(getattr(g, "use", None), "name", "_mcUsedGroup") != "_mcUsedGroup":
+            continue
+        out.append(RobotSpec(group=g.name, axes=(g.axes[0], g.axes[1], g.axes[2]), params=kin.params(),
+                             workspace=kin.workspace_obj()))
+    return out
+
+
+@dataclass(frozen=True, slots=True)
+class AxisReading:
+    logical: str
+    name: str
+    act_pos: float  # degrees; NaN if the axis is not in the snapshot
+    state: str  # AxisState name
+    error_code: int
+
+
+@dataclass(frozen=True, slots=True)
+class RobotReading:
+    """One robot as of a snapshot: joint feedback (deg), TCP by forward kinematics (mm, MCS; None if unsolvable),
+    and the alarm (ErrorStop of the group or of a member axis) as a code and a text."""
+
+    group: str
+    angles: tuple[float, float, float]
+    axes: tuple[AxisReading, ...]
+    tcp: tuple[float, float, float] | None
+    kin_status: Status
+    group_state: str | None = None
+    group_error: int = 0
+
+    @property
+    def alarm(self) -> tuple[int, str] | None:
+        """(ErrorID, "MC_Group000 ErrorStop 6701" …) when the group or an axis is in ErrorStop, else None."""
+        if self.group_state == "ErrorStop":
+            return self.group_error, f"{self.group} ErrorStop {self.group_error:04X}"
+        for a in self.axes:
+            if a.state == "ErrorStop":
+                return a.error_code, f"{a.logical} {a.name} ErrorStop {a.error_code:04X}"
+        return None
+
+    @property
+    def key(self) -> tuple[Any, ...]:
+        """What the picture depends on: equal keys draw the same frame (the viz thread skips it)."""
+        return (self.angles, self.alarm, self.kin_status)
+
+
+def axis_index(snapshot_axes: list[str], name: str) -> int | None:
+    try:
+        return snapshot_axes.index(name)
+    except ValueError:
+        return None
+
+
+def _group_state(snap: Snapshot, group: str) -> tuple[str | None, int]:
+    """The group's state and ErrorID if the snapshot carries groups (`mc["groups"]`: name → (state, error))."""
+    groups = snap.mc.get("groups") if isinstance(snap.mc, dict) else None
+    if not isinstance(groups, Mapping):
+        return None, 0
+    entry = groups.get(group)
+    if entry is None:
+        return None, 0
+    state, error = entry[0], entry[1]
+    return (state if isinstance(state, str) else getattr(state, "name", str(state))), int(error)
+
+
+def read_robot(spec: RobotSpec, snap: Snapshot, indices: tuple[int | None, int | None, int | None]) -> RobotReading:
+    """The robot in `snap`; `indices` are the member axes' positions in the snapshot arrays (None: not there)."""
+    mc = snap.mc
+    act = mc["act_pos"]
+    discrete = mc["discrete"]
+    angles = []
+    axes = []
+    for logical, name, i in zip(LOGICAL, spec.axes, indices, strict=True):
+        if i is None or i >= len(act):
+            angles.append(math.nan)
+            axes.append(AxisReading(logical, name, math.nan, "Disabled", 0))
+            continue
+        pos = float(act[i])
+        state, error = discrete[i][0], discrete[i][1]
+        angles.append(pos)
+        axes.append(AxisReading(logical, name, pos, AxisState(state).name, int(error)))
+    status, tcp = forward_point(spec.params, *angles)
+    gstate, gerror = _group_state(snap, spec.group)
+    return RobotReading(group=spec.group, angles=(angles[0], angles[1], angles[2]), axes=tuple(axes),
+                        tcp=tcp if status == Status.OK else None, kin_status=Status(status), group_state=gstate,
+                        group_error=gerror)

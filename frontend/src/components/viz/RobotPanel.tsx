@@ -1,0 +1,180 @@
+import { Alert, Badge, Code, Group, Loader, Paper, ScrollArea, Stack, Table, Text, Title } from "@mantine/core";
+import { IconAlertTriangle, IconRobot } from "@tabler/icons-react";
+import { useEffect, useState } from "react";
+import { api, unwrap } from "../../api/client";
+import type { RobotOut, RobotsOut } from "../../api/types";
+
+const POLL_MS = 200;
+
+/** GET /viz/robots every POLL_MS while `active` and the page is visible. */
+export function useRobots(active: boolean): { data: RobotsOut | null; error: string | null } {
+  const [data, setData] = useState<RobotsOut | null>(null);
+  const [error, setError] = useState<string | null>(null);
+  useEffect(() => {
+    if (!active) return;
+    let alive = true;
+    let busy = false;
+    const tick = async () => {
+      if (busy || document.visibilityState !== "visible") return;
+      busy = true;
+      try {
+        const r = await unwrap(api.GET("/api/v1/viz/robots"));
+        if (alive) {
+          setData(r);
+          setError(null);
+        }
+      } catch (err) {
+        if (alive) setError(err instanceof Error ? err.message : String(err));
+      } finally {
+        busy = false;
+      }
+    };
+    void tick();
+    const t = setInterval(() => void tick(), POLL_MS);
+    return () => {
+      alive = false;
+      clearInterval(t);
+    };
+  }, [active]);
+  return { data, error };
+}
+
+function fmt(v: number | null | undefined, digits = 3): string {
+  return v === null || v === undefined ? "—" : v.toFixed(digits);
+}
+
+function stateColor(state: string): string {
+  if (state === "ErrorStop") return "red";
+  if (state === "Disabled") return "gray";
+  if (state === "Standstill") return "teal";
+  return "blue";
+}
+
+function RobotCard({ robot }: { robot: RobotOut }) {
+  const k = robot.kinematics;
+  return (
+    <Stack gap={8} data-testid={`robot-${robot.group}`}>
+      <Group gap={6} justify="space-between" wrap="nowrap">
+        <Group gap={6} wrap="nowrap">
+          <IconRobot size={18} />
+          <Text fw={600} data-testid="robot-group">
+            {robot.group}
+          </Text>
+        </Group>
+        <Badge size="sm" variant="light" color={robot.alarm ? "red" : "blue"}>
+          Delta3
+        </Badge>
+      </Group>
+      {robot.alarm && (
+        <Alert color="red" variant="light" p={6} icon={<IconAlertTriangle size={16} />} data-testid="robot-alarm">
+          <Text size="xs">
+            {robot.alarm.message} (ErrorID {robot.alarm.code})
+          </Text>
+        </Alert>
+      )}
+      <Table withRowBorders={false} verticalSpacing={2} horizontalSpacing={4} fz="xs">
+        <Table.Thead>
+          <Table.Tr>
+            <Table.Th>Axis</Table.Th>
+            <Table.Th ta="right">Act.Pos [°]</Table.Th>
+            <Table.Th>State</Table.Th>
+          </Table.Tr>
+        </Table.Thead>
+        <Table.Tbody>
+          {robot.axes.map((a) => (
+            <Table.Tr key={a.logical} data-testid={`robot-axis-${a.logical}`}>
+              <Table.Td>
+                <Text size="xs" fw={600} span>
+                  {a.logical}
+                </Text>{" "}
+                <Text size="xs" c="dimmed" span>
+                  {a.name}
+                </Text>
+              </Table.Td>
+              <Table.Td ta="right" ff="monospace">
+                {fmt(a.act_pos)}
+              </Table.Td>
+              <Table.Td>
+                <Badge size="xs" variant="dot" color={stateColor(a.state)}>
+                  {a.state}
+                </Badge>
+              </Table.Td>
+            </Table.Tr>
+          ))}
+        </Table.Tbody>
+      </Table>
+      <div>
+        <Text size="xs" c="dimmed" mb={2}>
+          TCP (feedback, MCS, forward kinematics) [mm]
+        </Text>
+        {robot.tcp ? (
+          <Group gap={10} ff="monospace" data-testid="robot-tcp">
+            {(["X", "Y", "Z"] as const).map((n, i) => (
+              <Text key={n} size="sm">
+                <Text span c="dimmed" size="xs">
+                  {n}{" "}
+                </Text>
+                {fmt(robot.tcp?.[i], 2)}
+              </Text>
+            ))}
+          </Group>
+        ) : (
+          <Text size="xs" c="red" data-testid="robot-tcp">
+            no forward solution ({robot.kin_status})
+          </Text>
+        )}
+      </div>
+      <Text size="xs" c="dimmed">
+        Rf {k.Rf} · Rm {k.Rm} · Lf {k.Lf} · Lm {k.Lm} mm · θ {k.theta}°
+      </Text>
+    </Stack>
+  );
+}
+
+/** Status of the project's robots next to the 3D view, or what to do when there is none. */
+export function RobotPanel({ active }: { active: boolean }) {
+  const { data, error } = useRobots(active);
+  return (
+    <Paper
+      data-testid="robot-panel"
+      w={290}
+      radius={0}
+      p="sm"
+      style={{ borderLeft: "1px solid var(--mantine-color-gray-3)", flex: "none", display: "flex", minHeight: 0 }}
+    >
+      <ScrollArea style={{ flex: 1 }}>
+        <Stack gap="md">
+          <Title order={6}>Robot</Title>
+          {error && (
+            <Text size="xs" c="red">
+              {error}
+            </Text>
+          )}
+          {!data && !error && <Loader size="xs" />}
+          {data && data.robots.length === 0 && (
+            <Stack gap={6} data-testid="robot-empty">
+              <Text size="sm" fw={600}>
+                This project has no robot
+              </Text>
+              <Text size="xs" c="dimmed">
+                The 3D view draws every axes group with Delta3 kinematics. Add one to the project: three servo axes
+                in degrees (linear count mode, software limits within ±180°) and a group with composition{" "}
+                <Code>_mcXYZ</Code>, its axes as A0, A1, A2, and
+              </Text>
+              <Code block fz={10}>
+                {`"kinematics": {"type": "delta3",
+  "Rf": 200, "Rm": 50, "Lf": 350, "Lm": 800,
+  "theta": 0, "workspace": {"Zu": -50,
+  "Rcy": 300, "Hcy": 250, "Rco": 150, "Hco": 150}}`}
+              </Code>
+              <Text size="xs" c="dimmed">
+                then apply the project (or open the demo project, which has MC_Group000).
+              </Text>
+            </Stack>
+          )}
+          {data?.robots.map((r) => <RobotCard key={r.group} robot={r} />)}
+        </Stack>
+      </ScrollArea>
+    </Paper>
+  );
+}
