@@ -7,6 +7,7 @@ instruction, a profile end, a servo change, a supervision hit). `Axis` objects h
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -140,6 +141,12 @@ class MotionModule:
         self.cam_tables: dict[str, CamTable] = {}  # cam data variables by name (the kernel fills them)
         self.sync_laws: dict[int, Law] = {}  # slaves under synchronized control (sync.py), by axis number
         self._sync_order: list[int] = []  # their axis numbers in ascending order (masters with lower numbers first)
+        # cam table instructions (fb/cam_fb.py): table name → instruction holding it, the running save/generation
+        # (_MC_COM.Status.CamTableBusy / GenerateCamBusy), and how a save reaches the project folder
+        self.cam_locks: dict[str, Any] = {}
+        self.cam_saving: Any = None
+        self.generate_cam_busy: Any = None
+        self.cam_saver: Callable[[str, CamTable], None] | None = None
         self.fb_touched: set[int] = set()  # instances woken or put to sleep since the last snapshot
         self.fb_wakes = 0  # wake-ups so far (the kernel's program stage visits only awake instances while unchanged)
         self.watchers: dict[int, Any] = {}  # instances watching a latch / trigger each period (by instance id)

@@ -49,6 +49,26 @@ STRUCT_MEMBERS: dict[str, frozenset[str]] = {
 }
 
 
+CAM_PROPERTY_MEMBERS = {"InitVel": "REAL", "InitAcc": "REAL", "CycleTime": "REAL"}
+CAM_NODE_MEMBERS = {"Phase": "REAL", "Distance": "REAL", "Curve": "_eMC_CAM_CURVE", "ConnectingVelEnable": "BOOL",
+                    "ConnectingVel": "REAL", "ConnectingAccEnable": "BOOL", "ConnectingAcc": "REAL",
+                    "PhasePitch": "REAL"}
+MAX_CAM_NODES = 1000  # the instruction takes ≤ 359 valid nodes; longer arrays are refused at the API (bounded input)
+
+
+def _coerce_struct(field: str, value: Any, members: dict[str, str], type_name: str) -> dict[str, Any]:
+    """A structure given as a JSON object: known members only, each coerced to its type (enumerators by name)."""
+    if not isinstance(value, dict):
+        raise FBInputError(field, f"expected a {type_name} structure (JSON object), got {value!r}")
+    out: dict[str, Any] = {}
+    for k, v in value.items():
+        t = members.get(k)
+        if t is None:
+            raise FBInputError(field, f"{type_name} has no member {k!r} (members: {', '.join(members)})")
+        out[k] = Var(f"{field}.{k}", t).coerce(v)
+    return out
+
+
 class FBInputError(ValueError):
     """An input value has the wrong type for its variable; `field` names the variable."""
 
@@ -125,6 +145,13 @@ class Var:
             if isinstance(value, float) and not math.isfinite(value):
                 raise FBInputError(self.name, f"expected a finite number, got {value!r}")
             return value
+        if t == "_sMC_CAM_PROPERTY":
+            return _coerce_struct(self.name, value, CAM_PROPERTY_MEMBERS, t)
+        if t == "ARRAY OF _sMC_CAM_NODE":
+            if not isinstance(value, list) or not 1 <= len(value) <= MAX_CAM_NODES:
+                raise FBInputError(self.name, f"expected an array of 1 … {MAX_CAM_NODES} _sMC_CAM_NODE structures")
+            return [_coerce_struct(f"{self.name}[{k}]", item, CAM_NODE_MEMBERS, "_sMC_CAM_NODE")
+                    for k, item in enumerate(value)]
         if t in STRUCT_TYPES:
             # a structure variable: a JSON object; members are checked by the instruction (manual ErrorIDs)
             if not isinstance(value, dict):

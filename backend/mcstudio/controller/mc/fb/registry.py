@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from .admin import ADMIN_CLASSES
 from .base import FunctionBlock
+from .cam_fb import CAM_CLASSES
 from .common import COMMON_CLASSES
 from .homing_fb import HOMING_CLASSES
 from .latch import LATCH_CLASSES
@@ -12,5 +13,6 @@ from .sync_fb import SYNC_CLASSES
 from .torque import TORQUE_CLASSES
 
 ALL_CLASSES: tuple[type[FunctionBlock], ...] = (*FB_CLASSES, *ADMIN_CLASSES, *HOMING_CLASSES, *COMMON_CLASSES,
-                                                *LATCH_CLASSES, *TORQUE_CLASSES, *SYNC_CLASSES)
+                                                *LATCH_CLASSES, *TORQUE_CLASSES, *SYNC_CLASSES,
+                                                *CAM_CLASSES)
 FB_TYPES: dict[str, type[FunctionBlock]] = {cls.DEF.name: cls for cls in ALL_CLASSES}

@@ -220,6 +220,9 @@ class MC_CamIn(_SyncFB):
             return None, E_CAM_ABORTED_TABLE
         if table.end_point_index is None:
             return None, E_CAM_TABLE  # no valid end point: not a usable cam data variable (decision D43)
+        holder = self.mc.cam_locks.get(self.inp["CamTable"])
+        if holder is not None and holder.DEF.name == "MC_GenerateCamTable":
+            return None, E.E_MULTIEXEC_DISABLED  # the table is being generated (§5.0.3)
         return table, 0
 
     def _check(self, slave: Axis) -> int:
