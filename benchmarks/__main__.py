@@ -27,6 +27,11 @@ def main(argv: list[str] | None = None) -> int:
     k.add_argument("--axes", type=int, default=16)
     k.add_argument("--sim-seconds", type=float, default=5.0)
     k.add_argument("--period-us", type=int, default=1000)
+    k.add_argument("--cam-share", type=float, default=0.25, help="share of axes following a master through a cam")
+    cams = sub.add_parser("cams", help="MC_GenerateCamTable of a 65,535-point table; cam evaluation for many axes")
+    cams.add_argument("--points", type=int, default=65535)
+    kin = sub.add_parser("kinematics", help="Delta3 inverse/forward kinematics on 1e6 points")
+    kin.add_argument("--points", type=int, default=1_000_000)
     r = sub.add_parser("realtime", help="the demo project paced to the wall clock: overruns, timing percentiles")
     r.add_argument("--seconds", type=float, default=600.0, help="wall time (default 10 minutes)")
     rest = sub.add_parser("rest", help="REST latency: FB PATCH until the output is visible (server process)")
@@ -45,7 +50,16 @@ def main(argv: list[str] | None = None) -> int:
     if args.scenario == "kernel":
         from . import kernel
 
-        result = kernel.run(axes=args.axes, sim_seconds=args.sim_seconds, period_us=args.period_us)
+        result = kernel.run(axes=args.axes, sim_seconds=args.sim_seconds, period_us=args.period_us,
+                            cam_share=args.cam_share)
+    elif args.scenario == "cams":
+        from . import cams as cams_bench
+
+        result = cams_bench.run(points=args.points)
+    elif args.scenario == "kinematics":
+        from . import kinematics
+
+        result = kinematics.run(points=args.points)
     elif args.scenario == "realtime":
         from . import realtime
 

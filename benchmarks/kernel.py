@@ -1,5 +1,6 @@
-"""Kernel scaling: N servo axes on the emulated EtherCAT bus, half positioning back and forth, half in velocity
-control; the controller runs as fast as it can (fast mode), publishing snapshots at 120 Hz of wall time as the
+"""Kernel scaling: N servo axes on the emulated EtherCAT bus, all moving: positioning back and forth, velocity
+control, and (with `cam_share`, default ¼) periodic MC_CamIn slaves following a velocity axis through a 361-point
+cam table; the controller runs as fast as it can (fast mode), publishing snapshots at 120 Hz of wall time as the
 runner does in fast mode (checked every 8 periods)."""
 
 from __future__ import annotations
@@ -9,6 +10,7 @@ import time
 from typing import Any
 
 from mcstudio.controller.kernel import Controller
+from mcstudio.controller.mc.cam.table import CamTable
 from mcstudio.controller.runner import PUBLISH_INTERVAL_S
 from mcstudio.project.models import AxisConfig, ControllerSettings, Project
 
@@ -21,6 +23,17 @@ PARAMS = {
 }
 
 
+def cam_table() -> CamTable:
+    """A rise–dwell–return cam over 360 units of master travel, 1-unit pitch (cycloidal rise and return)."""
+    import numpy as np
+
+    x = np.arange(361.0)
+    rise = 50.0 * (x / 120.0 - np.sin(2 * np.pi * x / 120.0) / (2 * np.pi))
+    ret = 50.0 * (1 - ((x - 240.0) / 120.0 - np.sin(2 * np.pi * (x - 240.0) / 120.0) / (2 * np.pi)))
+    d = np.where(x < 120, rise, np.where(x < 240, 50.0, ret))
+    return CamTable.from_points(x, d)
+
+
 def build(axes: int, period_us: int) -> Controller:
     project = Project(
         name=f"bench-{axes}",
@@ -28,18 +41,24 @@ def build(axes: int, period_us: int) -> Controller:
         axes=[AxisConfig(name=f"MC_Axis{i:03d}", number=i, type="_mcServo", node_address=i + 1, parameters=PARAMS)
               for i in range(axes)],
     )
-    return Controller(project)
+    return Controller(project, cams={"Cam": cam_table()})
 
 
-def run(*, axes: int, sim_seconds: float, period_us: int) -> dict[str, Any]:
+def run(*, axes: int, sim_seconds: float, period_us: int, cam_share: float = 0.25) -> dict[str, Any]:
     c = build(axes, period_us)
+    n_cam = round(axes * cam_share) if axes >= 4 else 0
+    cam_slaves = {i for i in range(3, axes, 4)}
+    cam_slaves = set(sorted(cam_slaves)[:n_cam])
     for i in range(axes):
         c.fb("MC_Power", Axis=f"MC_Axis{i:03d}", Enable=True)
     c.step(10)
     moves = []
     for i in range(axes):
         name = f"MC_Axis{i:03d}"
-        if i % 2 == 0:
+        if i in cam_slaves:  # follows the velocity axis i − 2 through the cam, periodically
+            c.fb("MC_CamIn", Master=f"MC_Axis{i - 2:03d}", Slave=name, CamTable="Cam", Execute=True, Periodic=True,
+                 ReferenceType="_mcLatestCommand")
+        elif i % 2 == 0:
             moves.append(c.fb("MC_MoveAbsolute", Axis=name, Execute=True, Position=50.0 + i, Velocity=200.0,
                               Acceleration=2000.0, Deceleration=2000.0, Jerk=50000.0))
         else:
@@ -68,6 +87,7 @@ def run(*, axes: int, sim_seconds: float, period_us: int) -> dict[str, Any]:
     return {
         "scenario": "kernel",
         "axes": axes,
+        "cam_followers": len(cam_slaves),
         "period_us": period_us,
         "sim_s": sim,
         "wall_s": round(wall, 3),

@@ -716,14 +716,15 @@ class MotionModule:
         cmd, pv, pa = self.cmd_pos, self.prof_vel, self.prof_acc
         finished: list[Law] = []
         stale: list[int] = []
+        active = JobStatus.ACTIVE
         for i in self._sync_order:
             law = laws[i]
             job = law.job
-            if law.slave.current is not job or job.status != JobStatus.ACTIVE:
+            if law.slave.current is not job or job._status is not active:
                 stale.append(i)
                 continue
             pos = law.step()
-            pv[i] = (pos - cmd[i]) / T
+            pv[i] = (pos - cmd.item(i)) / T
             pa[i] = 0.0
             cmd[i] = pos
             if law.flags_changed:

@@ -80,6 +80,12 @@ class _SyncFB(ExecuteFB):
     ACCEPT = "move"
     LATCHED: tuple[tuple[str, int], ...] = ()  # inputs re-execution may not change, with their ErrorID
 
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        # The law's outputs (InCam, InSync, InGear, Index …) are pushed by the sync stage, which also wakes the
+        # instance; its call may sleep like a plain instruction's (a pulse to clear forces the next call, below)
+        cls._plain = "call" not in vars(cls) and "after_call" not in vars(cls)
+
     def resolve_axis(self, name_input: str = "Slave", *, allow_unused: bool = False) -> Axis | None:
         return super().resolve_axis(name_input, allow_unused=allow_unused)
 
@@ -306,6 +312,8 @@ class MC_CamIn(_SyncFB):
         eop = o["EndOfProfile"]
         super().sync_job()
         o["EndOfProfile"] = eop and not o["Error"]
+        if eop:
+            self.__dict__["_seen_status"] = None  # call again next period to end the pulse
 
 
 # --------------------------------------------------------------------------------------------------- MC_CamOut
