@@ -16,6 +16,7 @@ import {
   tabsStore,
 } from "../store/tabs";
 import { AxesTable } from "./axes/AxesTable";
+import { camTab } from "./cams/tabs";
 import { ethercatTab } from "./ethercat/tabs";
 import { AxisSettings } from "./settings/AxisSettings";
 import { AxisTestRun } from "./testrun/AxisTestRun";
@@ -136,7 +137,7 @@ export function Workspace() {
             3D
           </Tabs.Tab>
           {open.map((key) => {
-            const ec = ethercatTab(key);
+            const ec = ethercatTab(key) ?? camTab(key);
             if (ec) {
               return (
                 <Tabs.Tab key={key} value={key} leftSection={ec.icon} data-testid={ec.testId}
@@ -185,7 +186,7 @@ export function Workspace() {
           <AxesTable />
         </Tabs.Panel>
         {open.map((key) => {
-          const ec = ethercatTab(key);
+          const ec = ethercatTab(key) ?? camTab(key);
           if (ec) {
             return (
               <Tabs.Panel key={key} value={key} style={{ overflow: "hidden" }}>

@@ -19,6 +19,10 @@ export const pdoTabKey = (node: number): string => `pdo:${node}`;
 /** The slave (node address) of a PDO map tab (null for any other tab). */
 export const pdoNodeOfTab = (key: string): number | null => (key.startsWith("pdo:") ? Number(key.slice(4)) : null);
 
+export const camTabKey = (name: string): string => `cam:${name}`;
+/** The cam table of a cam editor tab (null for any other tab). */
+export const camOfTab = (key: string): string | null => (key.startsWith("cam:") ? key.slice(4) : null);
+
 export interface TabsState {
   /** Keys of the open tabs besides "Axes" and "3D" (axis test run and settings, EtherCAT), in opening order. */
   open: string[];
@@ -45,6 +49,10 @@ export function openEthercatTab(): void {
 
 export function openDevicesTab(): void {
   openTab(TAB_DEVICES);
+}
+
+export function openCamTab(name: string): void {
+  openTab(camTabKey(name));
 }
 
 export function openPdoTab(node: number): void {

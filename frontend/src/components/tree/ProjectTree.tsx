@@ -13,6 +13,7 @@ import {
   settingsTabKey,
   tabsStore,
 } from "../../store/tabs";
+import { CamTreeNode } from "../cams/CamTreeNode";
 import { EthercatTreeNode } from "./EthercatTreeNode";
 
 function StateBadge({ name }: { name: string }) {
@@ -141,6 +142,7 @@ export function ProjectTree() {
             ))}
           </NavLink>
           <EthercatTreeNode />
+          <CamTreeNode />
           <NavLink
             label={<Text size="xs" fw={600}>3D view</Text>}
             leftSection={<IconBox size={15} />}
