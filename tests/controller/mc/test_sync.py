@@ -525,3 +525,64 @@ def test_combine_axes_same_axis_errors() -> None:
                 ReferenceTypeAuxiliary="_mcFeedback")
     c.step(1)
     assert comb.Error and comb.ErrorID == 0x5437
+
+
+# ---------------------------------------------------------------------------------------------------- compensation
+def test_phasing_shifts_the_master_phase_the_slave_sees() -> None:
+    """MC_Phasing on a geared slave: the master does not move differently; the slave follows master + shift, the
+    shift being a relative profile of PhaseShift at Velocity; Done when the whole shift is output (MC_Phasing)."""
+    c = _rig()
+    _run_master(c, velocity=360.0)
+    gear = c.fb("MC_GearIn", Master=M, Slave=S, Execute=True, ReferenceType="_mcLatestCommand")
+    step_until(c, gear, "InGear")
+    m0, s0 = _pos(c, M), _pos(c, S)
+    ph = c.fb("MC_Phasing", Master=M, Slave=S, Execute=True, PhaseShift=30.0, Velocity=100.0, Acceleration=1000.0,
+              Deceleration=1000.0)
+    c.step(1)
+    assert ph.Busy and not ph.Done
+    n = step_until(c, ph, "Done")
+    assert n == pytest.approx(400, abs=3), "30 at 100 u/s with 1000 u/s² ramps: 0.4 s"
+    assert float(c.mc.cmd_vel[0]) == pytest.approx(360.0), "the master is not affected"
+    assert _pos(c, S) - s0 == pytest.approx(_pos(c, M) - m0 + 30.0, abs=1e-9)
+    assert gear.InGear and gear.Busy and c.mc.axes[1].state == AxisState.Synchronized
+
+
+def test_phasing_needs_a_running_synchronization_and_ends_with_it() -> None:
+    c = _rig()
+    ph = c.fb("MC_Phasing", Master=M, Slave=S, Execute=True, PhaseShift=5.0, Velocity=10.0)
+    c.step(1)
+    assert ph.Error and ph.ErrorID == 0x543A
+    c2 = _rig()
+    _run_master(c2)
+    gear = c2.fb("MC_GearIn", Master=M, Slave=S, Execute=True)
+    step_until(c2, gear, "InGear")
+    ph2 = c2.fb("MC_Phasing", Master=M, Slave=S, Execute=True, PhaseShift=1000.0, Velocity=10.0)
+    c2.step(5)
+    assert ph2.Active
+    c2.fb("MC_GearOut", Slave=S, Execute=True, Deceleration=1000.0)
+    c2.step(1)
+    assert ph2.CommandAborted and not ph2.Busy, "the synchronized instruction ended: CommandAborted"
+
+
+def test_sync_offset_position_adds_the_offset_every_period() -> None:
+    """MC_SyncOffsetPosition: the slave command = synchronized command + OffsetPosition (changed every period while
+    Active); after the abort the last offset stays (MC_SyncOffsetPosition)."""
+    c = _rig()
+    _run_master(c, velocity=360.0)
+    gear = c.fb("MC_GearIn", Master=M, Slave=S, Execute=True, ReferenceType="_mcLatestCommand")
+    step_until(c, gear, "InGear")
+    m0, s0 = _pos(c, M), _pos(c, S)
+    off = c.fb("MC_SyncOffsetPosition", Axis=S, Execute=True, OffsetPosition=0.0)
+    c.step(1)
+    for k in range(1, 50):
+        c.set_inputs(off.id, {"OffsetPosition": 0.1 * k})
+        c.step(1, publish=False)
+        assert _pos(c, S) - s0 == pytest.approx(_pos(c, M) - m0 + 0.1 * k, abs=1e-9)
+        assert off.OutputtedOffsetPosition == pytest.approx(0.1 * k)
+    assert off.Active
+    second = c.fb("MC_SyncOffsetPosition", Axis=S, Execute=True, OffsetPosition=1.0)
+    c.step(1)
+    assert off.CommandAborted and second.Busy and not second.Active
+    assert _pos(c, S) - s0 == pytest.approx(_pos(c, M) - m0 + 4.9 + 1.0, abs=1e-9), "the old offset stays"
+    c.step(1)
+    assert second.Active

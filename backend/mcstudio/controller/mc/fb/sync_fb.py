@@ -161,6 +161,8 @@ class _SyncFB(ExecuteFB):
                 return  # started by this period's call: Active from the next call (outputs of the law show now)
         elif st in (JobStatus.ABORTED, JobStatus.ERROR, JobStatus.DONE):
             self._clear_sync_outputs()
+            for dep in list(getattr(job.info.get("law"), "dependents", ())):
+                dep.sync_ended()  # MC_Phasing / MC_SyncOffsetPosition on it: CommandAborted in the same period
         super().sync_job()
 
     def _set_error(self, code: int, axis: Axis | None) -> None:
@@ -666,5 +668,212 @@ class MC_CombineAxes(_SyncFB):
         self.out["InCombination"] = law.in_sync
 
 
+# --------------------------------------------------------------------------------------------------- compensation
+class _CompensationFB(ExecuteFB):
+    """MC_Phasing / MC_SyncOffsetPosition: no motion job of their own; they act on the law of the synchronized
+    instruction running on the slave (the axis stays Synchronized, A-3.4 E*8) and end with CommandAborted when
+    that instruction ends (their rules)."""
+
+    KINDS: tuple[str, ...] = ("cam", "gear", "gearpos", "link")
+
+    def __init__(self, mc: Any, fb_id: int, inputs: dict[str, Any] | None = None) -> None:
+        super().__init__(mc, fb_id, inputs)
+        self._law: Any = None
+
+    def resolve_axis(self, name_input: str = "Slave", *, allow_unused: bool = False) -> Axis | None:
+        return super().resolve_axis(name_input if name_input in self.inp else "Axis", allow_unused=allow_unused)
+
+    def running_law(self, slave: Axis) -> Any:
+        cur = slave.current
+        if cur is None or cur.kind != JobKind.SYNC or not cur.running:
+            return None
+        law = cur.info.get("law")
+        return law if law is not None and law.kind in self.KINDS else None
+
+    def _attached(self) -> bool:
+        """Still working on the synchronized instruction it was started on."""
+        law = self._law
+        return law is not None and law.job.running and law.slave.current is law.job
+
+    def _abort(self) -> None:
+        law, self._law = self._law, None
+        deps = getattr(law, "dependents", None)
+        if deps is not None and self in deps:
+            deps.remove(self)
+        self._finish("CommandAborted")
+
+    def _attach(self, law: Any) -> None:
+        self._law = law
+        if not hasattr(law, "dependents"):
+            law.dependents = []
+        if self not in law.dependents:
+            law.dependents.append(self)
+
+    def sync_ended(self) -> None:
+        if self._law is not None:
+            self._abort()
+
+    def sync_job(self) -> None:
+        if self._law is None:
+            return
+        if not self._attached():
+            self._abort()
+            return
+        self.out["Active"] = True
+        self.track()
+
+    def track(self) -> None:
+        """Per-call work while Active."""
+
+
+class MC_Phasing(_CompensationFB):
+    DEF = FBDef(
+        name="MC_Phasing",
+        title="Shift master axis phase",
+        summary="Shifts the master phase the slave follows by PhaseShift (a relative profile at Velocity, "
+                "Acceleration, Deceleration) without moving the master.",
+        kind="execute",
+        inouts=(IO_MASTER, IO_SLAVE),
+        inputs=(
+            I_EXECUTE,
+            Var("PhaseShift", "LREAL", 0.0, "Master phase compensation (relative)", "unit", "negative, positive, 0"),
+            Var("Velocity", "LREAL", 0.0, "Compensation velocity (relative to the master)", "unit/s", "positive"),
+            I_ACC, I_DEC,
+            Var("Jerk", "LREAL", 0.0, "Jerk (0 = trapezoid)", "unit/s³", "positive or 0"),
+            Var("BufferMode", "_eMC_BUFFER_MODE", 0, "Reserved: _mcAborting", None, "0", allowed=(0,)),
+        ),
+        outputs=(O_DONE, O_BUSY, O_ACTIVE, O_ABORTED, O_ERROR, O_ERRORID),
+        spec="omron-axis-instructions.md MC_Phasing (seed 000 line 10418)",
+        notes="Re-execution starts a new compensation profile for the changed PhaseShift from where the running one "
+              "is (decision D42).",
+    )
+
+    def _check(self, slave: Axis) -> tuple[Any, int]:
+        i = self.inp
+        master = self.mc.by_name.get(i.get("Master") or "")
+        if master is None:
+            return None, E_MASTER_ILLEGAL
+        if master is slave:
+            return None, E_SAME_AXIS
+        law = self.running_law(slave)
+        if law is None:
+            return None, E_SYNC_STOPPED
+        if master.i not in law.masters:
+            return None, E_MASTER_ILLEGAL  # not the master of the running synchronized instruction (A-1 #65)
+        if not fits_distance(i["PhaseShift"], master.ppu):
+            return None, 0x548C
+        if not i["Velocity"] > 0:
+            return None, E.E_VELOCITY
+        code = _acc_dec_error(i)
+        if code:
+            return None, code
+        if i["BufferMode"] != 0:
+            return None, E.E_BUFFER_MODE
+        return law, 0
+
+    def execute(self, axis: Axis) -> None:
+        _, code = axis.check_start("admin")
+        law, code2 = self._check(axis)
+        code = code2 or code
+        if code:
+            self.fail(code, axis)
+            return
+        self._start_profile(law)
+
+    def _start_profile(self, law: Any) -> None:
+        from ..sync import PhaseShift
+
+        i = self.inp
+        m = self.mc
+        base = law.shift()  # the compensation already applied (a running MC_Phasing is taken over: Aborting)
+        seg = m.planner.position(p0=0.0, v0=0.0, a0=0.0, target=i["PhaseShift"], velocity=i["Velocity"],
+                                 acceleration=i["Acceleration"], deceleration=i["Deceleration"], jerk=i["Jerk"])
+        old = law.phasing
+        law.phasing = PhaseShift(seg, m.cycle + 1, base)
+        law.phase_base = base
+        owner = getattr(old, "owner", None)
+        law.phasing.owner = self
+        if owner is not None and owner is not self and owner._law is law:
+            owner._abort()  # the previous MC_Phasing is replaced (Aborting): CommandAborted
+        self._attach(law)
+
+    def reexecute(self, axis: Axis) -> None:
+        law, code = self._check(axis)
+        if code:
+            self.fail(code, axis)
+            return
+        self._start_profile(law)
+
+    def track(self) -> None:
+        law = self._law
+        ph = law.phasing
+        if ph is None or getattr(ph, "owner", None) is not self:
+            self._abort()  # another MC_Phasing took over
+            return
+        if ph.done:
+            self._law = None
+            self._finish("Done")
+
+
+class MC_SyncOffsetPosition(_CompensationFB):
+    DEF = FBDef(
+        name="MC_SyncOffsetPosition",
+        title="Cyclic synchronous position offset compensation",
+        summary="Adds OffsetPosition (relative to the start, may change every period) to the command position of "
+                "a slave in synchronized control.",
+        kind="execute",
+        inouts=(Var("Axis", "_sAXIS_REF", None, "Slave axis in synchronized control"),),
+        inputs=(
+            I_EXECUTE,
+            Var("OffsetPosition", "LREAL", 0.0, "Offset added to the command position (relative to the start)",
+                "unit"),
+            Var("BufferMode", "_eMC_BUFFER_MODE", 0, "Reserved: _mcAborting", None, "0", allowed=(0,)),
+            Var("MoveMode", "_eMC_MOVE_MODE", 1, "Reserved: _mcRelative", None, "1", allowed=(1,)),
+        ),
+        outputs=(Var("OutputtedOffsetPosition", "LREAL", 0.0, "Offset added to the command position", "unit"),
+                 O_BUSY, O_ACTIVE, O_ABORTED, O_ERROR, O_ERRORID),
+        spec="omron-axis-instructions.md MC_SyncOffsetPosition (seed 000 line 14193)",
+        notes="MoveMode defaults to _mcRelative, the only valid value (decision D43).",
+    )
+    KINDS = ("cam", "gear", "gearpos", "link")  # not MC_CombineAxes
+
+    def __init__(self, mc: Any, fb_id: int, inputs: dict[str, Any] | None = None) -> None:
+        super().__init__(mc, fb_id, inputs)
+        self._base = 0.0
+
+    def execute(self, axis: Axis) -> None:
+        i = self.inp
+        law = self.running_law(axis)
+        code = 0
+        if i["BufferMode"] != 0:
+            code = E.E_BUFFER_MODE
+        elif i["MoveMode"] != 1:
+            code = E.E_MOVE_MODE
+        elif law is None:
+            code = E_SYNC_STOPPED
+        if code:
+            self.fail(code, axis)
+            return
+        old = getattr(law, "offset_owner", None)
+        law.offset_owner = self
+        if old is not None and old is not self and old._law is law:
+            old._abort()  # the running instance is replaced: CommandAborted, its offset stays
+        self._base = law.offset  # the offset already output stays; this instance adds to it
+        self._attach(law)
+        self.track()
+
+    def sync_job(self) -> None:
+        law = self._law
+        if law is not None and getattr(law, "offset_owner", None) is not self:
+            self._abort()  # another MC_SyncOffsetPosition took over
+            return
+        super().sync_job()
+
+    def track(self) -> None:
+        off = self.inp["OffsetPosition"]
+        self._law.offset = self._base + off
+        self.out["OutputtedOffsetPosition"] = off
+
+
 SYNC_CLASSES: tuple[type[ExecuteFB], ...] = (MC_CamIn, MC_CamOut, MC_GearIn, MC_GearInPos, MC_GearOut, MC_MoveLink,
-                                             MC_CombineAxes)
+                                             MC_CombineAxes, MC_Phasing, MC_SyncOffsetPosition)
