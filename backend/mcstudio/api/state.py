@@ -16,7 +16,7 @@ from ..controller.mc.enums import AxisState
 from ..controller.mc.module import drv_status
 from ..controller.runner import Runner
 from ..fieldbus.library import DeviceLibrary
-from ..project.cams import load_cam_tables, sync_cam_files, tables_for
+from ..project.cams import load_cam_tables, sync_cam_files, tables_for, write_cam_file
 from ..project.io import ProjectError, dump_project, load_project, save_project
 from ..project.models import Project
 from .models import AxisSummary, ControllerStatus, FBOut
@@ -47,6 +47,20 @@ class Studio:
         self._dirty_memo: tuple[Project, str, bool] | None = None
         if not self.saved_text:
             self.saved_text = dump_project(self.runner.controller.project)
+        self.attach(self.runner.controller)
+
+    def attach(self, controller: Controller) -> None:
+        """Connect a controller to the project folder: MC_SaveCamTable writes `cams/<name>.csv` (it runs in a
+        background thread, decision D44) and the saved data become the table's downloaded value."""
+        folder = self.project_dir
+        if folder is None:
+            return
+
+        def save_cam(name: str, table: CamTable) -> None:
+            write_cam_file(folder, name, table)
+            controller.cams[name] = table
+
+        controller.mc.cam_saver = save_cam
 
     # ------------------------------------------------------------------ controller views
     @property
@@ -136,6 +150,7 @@ class Studio:
         if cams is None:
             cams = tables_for(project, self.controller.cams, self.project)
         controller = Controller(project, library=self.library, cams=cams)
+        self.attach(controller)
 
         def swap(current: Controller) -> None:
             moving = [a.name for a in current.mc.axes if a.state in _MOVING]

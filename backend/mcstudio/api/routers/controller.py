@@ -58,6 +58,7 @@ def post_reset_errors(studio: Studio = Depends(get_studio)) -> ControllerStatus:
 def post_reset(studio: Studio = Depends(get_studio)) -> ControllerStatus:
     project = studio.project
     controller = Controller(project, library=studio.library, cams=studio.controller.cams)
+    studio.attach(controller)
     studio.runner.replace_controller(controller)
     if studio.viz is not None:
         studio.viz.rebuild(controller)
