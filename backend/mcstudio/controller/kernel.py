@@ -199,6 +199,9 @@ class Controller:
                 if var.type == "_sAXIS_REF" and value not in self.mc.by_name:
                     known = ", ".join(self.mc.by_name) or "none"
                     raise FBInputError(var.name, f"no axis named {value!r} in this project (axes: {known})")
+                if var.type == "_sGROUP_REF" and value not in self.mc.groups_by_name:
+                    known = ", ".join(self.mc.groups_by_name) or "none"
+                    raise FBInputError(var.name, f"no axes group named {value!r} in this project (groups: {known})")
 
     def get_fb(self, fb_id: int) -> FunctionBlock:
         entry = self.program.get(fb_id)

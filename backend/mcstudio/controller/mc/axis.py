@@ -68,6 +68,7 @@ class Axis(AxisPlanning):
         self.in_pos_waiting = False
         self.homing: Any = None  # the running Homing sequence (mc/homing.py)
         self.latch_owner: dict[int, Any] = {}  # LatchID → instruction using the drive latch
+        self.group: Any = None  # the enabled axes group this axis is a composition axis of (group.py)
 
     # ------------------------------------------------------------------ configuration
     def apply_parameters(self, params: AxisParameters, *, initial: bool = False) -> None:
@@ -191,7 +192,10 @@ class Axis(AxisPlanning):
         self.m.state[self.i] = state
 
     def _rest_state(self) -> AxisState:
-        """State of a stopped axis without error: Disabled / Standstill / Stopping (MC_Stop held)."""
+        """State of a stopped axis without error: Disabled / Standstill / Stopping (MC_Stop held); Coordinated while
+        its axes group is enabled (A-3: servo ON or OFF)."""
+        if self.group is not None:
+            return S.Coordinated
         if not self.servo_on:
             return S.Disabled
         return S.Stopping if self.stop_holders else S.Standstill
@@ -244,6 +248,8 @@ class Axis(AxisPlanning):
         self.abort_all()
         self.in_pos_waiting = False
         self._set_state(S.ErrorStop)
+        if self.group is not None:
+            self.group.on_axis_error(self, code)  # 7430 on a moving group: its axes stop immediately
         if not self.servo_on or stop == STOP_NONE:
             return
         if stop == STOP_IMMEDIATE:
@@ -334,7 +340,9 @@ class Axis(AxisPlanning):
                 self.forced_off = True
             self.abort_all()
             self.halt()
-            self._set_state(S.Disabled)
+            if self.group is not None:
+                self.group.on_member_servo_off(self)
+            self._set_state(self._rest_state())
 
     # ------------------------------------------------------------------ MC_Reset
     def reset(self) -> bool:

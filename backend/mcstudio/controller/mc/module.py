@@ -33,6 +33,7 @@ from . import errors as E
 from .axis import Axis
 from .cam.table import CamTable
 from .enums import AxisState
+from .group import AxesGroup
 from .jobs import JobKind, JobStatus
 from .profile import Planner, PlanningError, ProfileTable
 from .supervision import Supervision
@@ -223,6 +224,11 @@ class MotionModule:
         self._fault_resets = False
         self.supervise = Supervision(self)
         self.obs_set: dict[int, np.ndarray] = {}  # supervision: where each observation check set its observation
+        # axes groups (group.py): the used groups of the project; those with a group motion step in the motion stage
+        self.groups: list[AxesGroup] = [AxesGroup(self, cfg) for cfg in getattr(project, "groups", ())
+                                         if cfg.use.name == "_mcUsedGroup"]
+        self.groups_by_name: dict[str, AxesGroup] = {g.name: g for g in self.groups}
+        self.moving_groups: dict[int, AxesGroup] = {}
         if network is not None:
             self.pd_ok[self.bus_rows] = network.pd_ok[self.bus_slaves]
             for row in rows:
@@ -595,6 +601,9 @@ class MotionModule:
                 self.notify[i] = axis.on_profile_finished(job)
         if self._n_trq:
             self._torque_stage(cycle, T)
+        if self.moving_groups:
+            for group in list(self.moving_groups.values()):
+                group.step(cycle)
         if self.sync_laws:
             self._sync_stage(T)
         # derived command values (manual §2.3: differences of command positions / velocities)
@@ -813,6 +822,7 @@ class MotionModule:
             "act_trq": self.act_trq.copy(),
             "drv": self.drv.copy(),
             "discrete": tuple(a.capture(st) for a, st in zip(self.axes, self.state.tolist(), strict=True)),
+            "groups": tuple(g.capture() for g in self.groups),
         }
 
 

@@ -139,6 +139,8 @@ class Var:
                 what = "a cam data variable (cam table)" if t == "_sMC_CAM_REF" else "an axis variable"
                 raise FBInputError(self.name, f"expected the name of {what}, got {value!r}")
             return value
+        if t.startswith("ARRAY["):  # ARRAY[0..N] OF LREAL/UINT: a JSON list, missing elements take the default 0
+            return coerce_array(self.name, t, value)
         if t == "ANY_NUM":  # MC_Write SettingValue: a number or an enumerator name, checked by the instruction
             if isinstance(value, bool) or not isinstance(value, int | float | str):
                 raise FBInputError(self.name, f"expected a number or an enumerator name, got {value!r}")
@@ -193,6 +195,18 @@ class Var:
                 {"name": m.name, "value": int(m)} for m in en if self.allowed is None or int(m) in self.allowed
             ]
         return out
+
+
+def coerce_array(name: str, t: str, value: Any) -> list[Any]:
+    """`ARRAY[0..N] OF LREAL` / `OF UINT` (the group instructions' Position, AuxPoint, CircAxes …)."""
+    bounds, _, elem = t[len("ARRAY["):].partition("] OF ")
+    size = int(bounds.split("..")[1]) + 1
+    if not isinstance(value, list | tuple) or len(value) > size:
+        raise FBInputError(name, f"expected a list of at most {size} numbers ({t}), got {value!r}")
+    item = Var(name, elem)
+    out = [item.coerce(v) for v in value]
+    out.extend([0.0 if elem == "LREAL" else 0] * (size - len(out)))
+    return out
 
 
 @dataclass(frozen=True)

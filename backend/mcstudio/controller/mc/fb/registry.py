@@ -6,6 +6,7 @@ from .admin import ADMIN_CLASSES
 from .base import FunctionBlock
 from .cam_fb import CAM_CLASSES
 from .common import COMMON_CLASSES
+from .group_fb import GROUP_CLASSES
 from .homing_fb import HOMING_CLASSES
 from .latch import LATCH_CLASSES
 from .single_axis import FB_CLASSES
@@ -15,4 +16,5 @@ from .torque import TORQUE_CLASSES
 ALL_CLASSES: tuple[type[FunctionBlock], ...] = (*FB_CLASSES, *ADMIN_CLASSES, *HOMING_CLASSES, *COMMON_CLASSES,
                                                 *LATCH_CLASSES, *TORQUE_CLASSES, *SYNC_CLASSES,
                                                 *CAM_CLASSES)
+ALL_CLASSES = (*ALL_CLASSES, *GROUP_CLASSES)  # axes-group instructions (group_fb.py)
 FB_TYPES: dict[str, type[FunctionBlock]] = {cls.DEF.name: cls for cls in ALL_CLASSES}
