@@ -23,7 +23,7 @@ const PLOTS: PlotDef[] = [
   { key: "jerk", label: "Jerk", unit: "/s³", color: "#ae3ec9" },
 ];
 
-const HEIGHT = 150;
+const HEIGHT = 105;
 const SYNC_KEY = "cam-editor";
 const axisFont = "11px system-ui, sans-serif";
 
