@@ -189,9 +189,8 @@ def test_blending_next_keeps_the_path_velocity_through_the_corner(c: Controller)
             assert b.Active
         else:
             assert line_distance(p, (20.0, 0.0), (20.0, 20.0)) < TOL
-        if a.Active or (b.Active and p[1] < 10.0):
-            if 5.0 < p[0] and p[1] < 10.0:
-                slowest = min(slowest, g.cmd_vel)
+        if (a.Active or b.Active) and p[0] > 5.0 and p[1] < 10.0:
+            slowest = min(slowest, g.cmd_vel)
         if b.Done:
             break
     assert b.Done and positions(c) == (20.0, 20.0)
