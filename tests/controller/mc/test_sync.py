@@ -586,3 +586,32 @@ def test_sync_offset_position_adds_the_offset_every_period() -> None:
     assert _pos(c, S) - s0 == pytest.approx(_pos(c, M) - m0 + 4.9 + 1.0, abs=1e-9), "the old offset stays"
     c.step(1)
     assert second.Active
+
+
+# ---------------------------------------------------------------------------------------------------- cyclic
+def test_sync_move_absolute_outputs_the_target_of_every_period() -> None:
+    """MC_SyncMoveAbsolute: the target written in a period is the command of the next; a step beyond Maximum
+    Velocity × period is saturated (the rest follows); InPosition when the feedback is within the in-position range
+    of an unchanged target; Discrete; MC_Stop stops at once (MC_SyncMoveAbsolute rules)."""
+    c = _rig()
+    ax = c.mc.by_name[S]
+    sm = c.fb("MC_SyncMoveAbsolute", Axis=S, Execute=True, Position=0.0)
+    c.step(1)
+    assert sm.Busy
+    assert ax.state == AxisState.Discrete
+    for k in range(1, 20):
+        c.set_inputs(sm.id, {"Position": 0.5 * k})
+        c.step(1, publish=False)
+        assert _pos(c, S) == pytest.approx(0.5 * k)
+    c.step(2)
+    assert sm.InPosition and sm.Active
+    vmax = ax.params.Operation.MaxVel  # 100000 u/s: 100 per period
+    c.set_inputs(sm.id, {"Position": 1000.0})
+    c.step(1)
+    assert _pos(c, S) == pytest.approx(9.5 + vmax * 0.001), "velocity-saturated step"
+    assert not sm.InPosition
+    c.step(10)
+    assert _pos(c, S) == pytest.approx(1000.0)
+    c.fb("MC_Stop", Axis=S, Execute=True, Deceleration=10.0)
+    c.step(1)
+    assert sm.CommandAborted and float(c.mc.cmd_vel[1]) == 0.0

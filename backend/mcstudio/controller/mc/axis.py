@@ -18,7 +18,7 @@ from . import errors as E
 from .acceptance import verdict
 from .axis_planning import AxisPlanning
 from .enums import AxisState, _eMC_AXIS_TYPE, _eMC_BUFFER_MODE, _eMC_COUNT_MODE, _eMC_DIRECTION, _eMC_STOP_MODE
-from .jobs import MOTION_KINDS, Job, JobKind, JobStatus
+from .jobs import LAW_KINDS, MOTION_KINDS, Job, JobKind, JobStatus
 from .units import pulses_per_unit
 
 if TYPE_CHECKING:
@@ -245,6 +245,8 @@ class Axis(AxisPlanning):
         if self.error_code == 0:
             self.error_code = code
         self.m.log_error(code, axis=self, source=source, detail=detail)
+        if self.current is not None and self.current.kind == JobKind.CYCLIC and stop == STOP_DECEL:
+            stop = STOP_IMMEDIATE  # an error during MC_SyncMoveAbsolute stops the axis immediately (its rules)
         self.abort_all()
         self.in_pos_waiting = False
         self._set_state(S.ErrorStop)
@@ -390,7 +392,7 @@ class Axis(AxisPlanning):
         if self.buffered is not None:
             return E.E_BUFFER_LIMIT
         blending = mode >= _eMC_BUFFER_MODE._mcBlendingLow
-        if cur.kind == JobKind.SYNC:
+        if cur.kind in LAW_KINDS:
             # onto synchronized control: Buffered only onto MC_CamIn (taking over at EndOfProfile), blending only
             # MC_CamIn onto MC_CamIn with the same master and ReferenceType; onto MC_GearIn, MC_GearInPos,
             # MC_MoveLink and MC_CombineAxes only Aborting (their rules, decision D39)
@@ -428,6 +430,7 @@ class Axis(AxisPlanning):
             JobKind.HOMING: S.Homing,
             JobKind.SYNC: S.Synchronized,
             JobKind.SYNC_OUT: S.Discrete,
+            JobKind.CYCLIC: S.Discrete,
         }.get(job.kind)
         if job.kind == JobKind.RESET_FE and self.state == S.Standstill:
             state = None  # MC_ResetFollowingError on a standing axis keeps Standstill (A-3.4: B → B; C/D/E → G)
@@ -481,6 +484,8 @@ class Axis(AxisPlanning):
             self._end_job(cur, JobStatus.DONE)
         elif cur is not None and cur.kind == JobKind.RESET_FE:
             job.deceleration = 0.0  # MC_Stop during MC_ResetFollowingError stops immediately (MC_Stop rules)
+        elif cur is not None and cur.kind == JobKind.CYCLIC:
+            job.deceleration = 0.0  # MC_Stop during MC_SyncMoveAbsolute stops immediately (its rules)
         elif cur is not None and cur.kind == JobKind.TORQUE:
             # MC_Stop during torque control stops immediately: back to CSP with the servo locked at the feedback
             # position (MC_TorqueControl rules, "axis stop during torque control"; decision D25)

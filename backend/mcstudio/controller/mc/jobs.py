@@ -35,9 +35,12 @@ class JobKind(enum.IntEnum):
     TORQUE = 7  # Continuous: MC_TorqueControl (the drive in CST; torque stage of the MC module, no profile)
     SYNC = 8  # Synchronized: MC_CamIn, MC_GearIn, MC_GearInPos, MC_MoveLink, MC_CombineAxes (a law in `sync.py`)
     SYNC_OUT = 9  # Discrete: MC_CamOut, MC_GearOut — decelerate the slave to 0 (Done at velocity 0)
+    CYCLIC = 10  # Discrete: MC_SyncMoveAbsolute — a target position from the program every period (a law in sync.py)
 
 
-MOTION_KINDS = (JobKind.POSITION, JobKind.VELOCITY, JobKind.JOG, JobKind.TORQUE, JobKind.SYNC, JobKind.SYNC_OUT)
+MOTION_KINDS = (JobKind.POSITION, JobKind.VELOCITY, JobKind.JOG, JobKind.TORQUE, JobKind.SYNC, JobKind.SYNC_OUT,
+                JobKind.CYCLIC)
+LAW_KINDS = (JobKind.SYNC, JobKind.CYCLIC)  # jobs whose command position a law computes in the sync stage
 
 
 @dataclass(eq=False, slots=True)

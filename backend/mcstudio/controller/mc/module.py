@@ -34,7 +34,7 @@ from .axis import Axis
 from .cam.table import CamTable
 from .enums import AxisState
 from .group import AxesGroup
-from .jobs import JobKind, JobStatus
+from .jobs import LAW_KINDS, JobKind, JobStatus
 from .profile import Planner, PlanningError, ProfileTable
 from .supervision import Supervision
 
@@ -658,7 +658,7 @@ class MotionModule:
         if job.kind == JobKind.TORQUE:
             self._start_torque(i, job, start_cycle)
             return
-        if job.kind == JobKind.SYNC:
+        if job.kind in LAW_KINDS:
             self._start_sync(i, axis, job, own_call=start_cycle is None)
             return
         p0, v0, a0 = float(self.cmd_pos[i]), float(self.prof_vel[i]), float(self.prof_acc[i])

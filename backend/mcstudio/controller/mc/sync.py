@@ -525,6 +525,33 @@ class CamLaw(Law):
         return self.sref + self.sscale * dist + self.soffset + self.offset
 
 
+# ------------------------------------------------------------------------------------------------------- cyclic
+class CyclicPositionLaw(Law):
+    """MC_SyncMoveAbsolute: the target the program writes every period is output in the next period, the step
+    limited to Maximum Velocity × period (the rest follows in the next periods, `Details.VelLimit`); Maximum
+    Acceleration/Deceleration are not applied."""
+
+    kind = "cyclic"
+
+    def __init__(self, m: MotionModule, job: Job, slave: Axis, target: float) -> None:
+        super().__init__(m, job, slave)
+        self.target = target
+        self.vel_limit = False
+        self.vmax_step = slave.params.Operation.MaxVel * m.period_s
+
+    def step(self) -> float:
+        cur = self.m.cmd_pos.item(self.slave.i)
+        d = self.target - cur
+        limit = self.vmax_step
+        saturated = abs(d) > limit > 0
+        if saturated != self.vel_limit:
+            self.vel_limit = saturated
+            self.flags_changed = True
+        if saturated:
+            return cur + math.copysign(limit, d)
+        return self.target
+
+
 # ------------------------------------------------------------------------------------------------------- helpers
 def _ring(axis: Axis) -> float:
     return axis.mod_max - axis.mod_min if axis.rotary else math.inf

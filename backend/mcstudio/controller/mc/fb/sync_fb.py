@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 from .. import errors as E
 from ..jobs import Job, JobKind, JobStatus
-from ..sync import REF_FEEDBACK, REF_LATEST, CamLaw, CombineLaw, GearLaw, GearPosLaw, LinkLaw
+from ..sync import REF_FEEDBACK, REF_LATEST, CamLaw, CombineLaw, CyclicPositionLaw, GearLaw, GearPosLaw, LinkLaw
 from ..units import fits_distance, fits_position
 from .base import I_EXECUTE, O_ABORTED, O_ACTIVE, O_BUSY, O_DONE, O_ERROR, O_ERRORID, ExecuteFB, FBDef, Var
 from .single_axis import _clamp_profile
@@ -875,5 +875,90 @@ class MC_SyncOffsetPosition(_CompensationFB):
         self.out["OutputtedOffsetPosition"] = off
 
 
+# --------------------------------------------------------------------------------------------------- cyclic
+class MC_SyncMoveAbsolute(_SyncFB):
+    DEF = FBDef(
+        name="MC_SyncMoveAbsolute",
+        title="Cyclic synchronous absolute positioning",
+        summary="Outputs the target position the program writes every period (no profile; the step limited to "
+                "Maximum Velocity); InPosition when the feedback is within the in-position range of an unchanged "
+                "target.",
+        kind="execute",
+        inouts=(Var("Axis", "_sAXIS_REF", None, "Axis"),),
+        inputs=(
+            I_EXECUTE,
+            Var("Position", "LREAL", 0.0, "Absolute target position (may change every period)", "unit"),
+            Var("Direction", "_eMC_DIRECTION", 1, "Direction in Rotary Mode (as MC_MoveAbsolute)", None, "0–4"),
+            Var("BufferMode", "_eMC_BUFFER_MODE", 0, "Reserved: _mcAborting", None, "0", allowed=(0,)),
+        ),
+        outputs=(
+            Var("InPosition", "BOOL", False, "TRUE while the feedback is within the in-position range of the target"),
+            O_BUSY, O_ACTIVE, O_ABORTED, O_ERROR, O_ERRORID,
+        ),
+        spec="omron-axis-instructions.md MC_SyncMoveAbsolute (seed 000 line 12478)",
+        notes="MC_Stop and errors stop the axis immediately. Override is ignored.",
+    )
+    SYNC_OUTPUTS = ("InPosition",)
+
+    def __init__(self, mc: Any, fb_id: int, inputs: dict[str, Any] | None = None) -> None:
+        super().__init__(mc, fb_id, inputs)
+        self._last_target: float | None = None
+
+    def resolve_axis(self, name_input: str = "Axis", *, allow_unused: bool = False) -> Axis | None:
+        return ExecuteFB.resolve_axis(self, "Axis", allow_unused=allow_unused)
+
+    def _check(self, slave: Axis) -> int:
+        i = self.inp
+        if i["Direction"] not in range(5):
+            return E.E_DIRECTION
+        if i["BufferMode"] != 0:
+            return E.E_BUFFER_MODE
+        if not fits_position(i["Position"], slave.ppu):
+            return E.E_TARGET_POSITION
+        return 0
+
+    def _resolve(self, slave: Axis) -> float:
+        _, target = slave.resolve_target(self.inp["Position"], self.inp["Direction"])
+        return target
+
+    def execute(self, axis: Axis) -> None:
+        verdict, code = axis.check_start(self.ACCEPT)
+        if verdict == "abort":
+            self._finish("CommandAborted")
+            return
+        if code != E.E_AXIS_TYPE:
+            code = self._check(axis) or code
+        if code:
+            self.fail(code, axis)
+            return
+        job = Job(JobKind.CYCLIC, self, buffer_mode=0)
+        job.info["law"] = CyclicPositionLaw(self.mc, job, axis, self._resolve(axis))
+        self._last_target = self.inp["Position"]
+        self.out["InPosition"] = False
+        self._submit(axis, job, "ok", 0)
+
+    def sync_job(self) -> None:
+        job = self.job
+        axis = self.axis
+        if job is not None and axis is not None and job.status in (JobStatus.ACTIVE, JobStatus.STARTING):
+            law = job.info["law"]
+            pos = self.inp["Position"]
+            changed = pos != self._last_target
+            if changed:
+                self._last_target = pos
+                law.target = self._resolve(axis)
+                code = self._check(axis)
+                if code:
+                    self.fail(code, axis)
+                    return
+            in_range = abs(axis.m.act_pos.item(axis.i) - law.target) <= axis.params.Operation.InPosRange
+            # a target change while InPosition keeps it TRUE this period, FALSE from the next (its rules)
+            self.out["InPosition"] = (in_range and not changed) or (changed and self.out["InPosition"])
+        super().sync_job()
+
+
+MC_SyncMoveAbsolute._plain = False  # reads Position and the feedback every period: never asleep
+
+
 SYNC_CLASSES: tuple[type[ExecuteFB], ...] = (MC_CamIn, MC_CamOut, MC_GearIn, MC_GearInPos, MC_GearOut, MC_MoveLink,
-                                             MC_CombineAxes, MC_Phasing, MC_SyncOffsetPosition)
+                                             MC_CombineAxes, MC_Phasing, MC_SyncOffsetPosition, MC_SyncMoveAbsolute)
