@@ -23,7 +23,7 @@ def test_get_ethercat_lists_slaves_in_op_with_offsets(client: TestClient) -> Non
     r = client.get("/api/v1/ethercat")
     assert r.status_code == 200
     body = r.json()
-    assert body["master"]["cycle_time_us"] == 1000 and body["master"]["slaves_in_op"] == 3
+    assert body["master"]["cycle_time_us"] == 1000 and body["master"]["slaves_in_op"] == 7
     s = body["slaves"][0]
     assert s["state"] == "Op" and s["pd_ok"] and s["axis"] == "MC_Axis000" and s["device_id"] == "builtin:cia402-servo"
     assert s["rx_assign"] == [0x1600] and s["tx_assign"] == [0x1A00] and s["rx_bytes"] == 23

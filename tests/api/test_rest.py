@@ -164,8 +164,11 @@ def test_controller_reset_restarts_at_cycle_zero(client: TestClient) -> None:
 
 def test_axes_list_and_detail(client: TestClient) -> None:
     axes = client.get(f"{API}/axes").json()
-    assert [a["name"] for a in axes] == ["MC_Axis000", "MC_Axis001", "MC_Axis002", "MC_Axis003"]
+    # the demo: three ball-screw axes, a virtual axis, the Delta3's A0–A2 and its conveyor (nodes 4–7)
+    assert [a["name"] for a in axes] == [f"MC_Axis00{k}" for k in range(8)]
     assert axes[3]["type"] == "_mcVirServo" and axes[3]["node_address"] is None
+    assert [(a["units"], a["node_address"]) for a in axes[4:]] == [
+        ("_mcDeg", 4), ("_mcDeg", 5), ("_mcDeg", 6), ("_mcMm", 7)]
     d = client.get(f"{API}/axes/MC_Axis001").json()
     v = d["variables"]
     assert set(v) == {"Status", "Details", "Dir", "DrvStatus", "Cmd", "Act", "MFaultLvl", "Obsr", "Cfg", "Scale"}
@@ -253,6 +256,7 @@ def test_projects_list_and_open(client: TestClient, project_dir: Path) -> None:
     doc = json.loads((project_dir / "project.json").read_text())
     doc["name"] = "Other machine"
     doc["axes"] = doc["axes"][:1]
+    doc["groups"] = []  # (the demo robot's axes are gone)
     (other / "project.json").write_text(json.dumps(doc))
     shutil.copytree(project_dir / "cams", other / "cams")  # the cam tables' data files
     bad = project_dir.parent / "broken"
@@ -300,7 +304,7 @@ def test_two_identical_scripted_runs_give_identical_traces(client: TestClient) -
 
 def test_snapshot_and_websocket(client: TestClient) -> None:
     snap = client.get(f"{API}/snapshot").json()
-    assert snap["type"] == "snapshot" and len(snap["axes"]) == 4
+    assert snap["type"] == "snapshot" and len(snap["axes"]) == 8
     with client.websocket_connect(f"{API}/ws") as ws:
         ws.send_json({"type": "subscribe", "rate_hz": 60, "axes": ["MC_Axis002"], "fbs": [], "events": True})
         while (msg := ws.receive_json())["type"] != "subscribed":

@@ -1,6 +1,6 @@
 """EtherCAT in the studio, in a real headless Chromium: the network view, the PDO map editor, ESI import, faults.
 
-The demo project has three servo axes on EtherCAT nodes 1-3 (built-in CiA402 drives, implicit network). The PDO map
+The demo project has seven servo axes on EtherCAT nodes 1-7 (built-in CiA402 drives, implicit network). The PDO map
 of node 1 loses 607Ah (target position): the axis reports 3460 (Required Process Data Object Not Set); the device
 default brings it back. An invalid edit (607Ah with 16 bits) is refused by the controller and the reason is shown on
 the row. ESI import adds the SOES CiA402 device to the library. Pulling node 2's cable puts it in Init; plugging it
@@ -54,7 +54,7 @@ def test_network_view_and_pdo_map_editor(page, server: Server) -> None:
     page.get_by_test_id("ecat-network").wait_for()
     for node in (1, 2, 3):
         _state(page, node, "Op")
-    page.get_by_test_id("ecat-slaves-in-op").filter(has_text=re.compile(r"3\s*/\s*3")).wait_for()
+    page.get_by_test_id("ecat-slaves-in-op").filter(has_text=re.compile(r"7\s*/\s*7")).wait_for()
     assert page.get_by_test_id("ecat-axis-1").inner_text().endswith("MC_Axis000")
     assert page.get_by_test_id("ecat-drive-state-1").inner_text().strip() != ""
     page.screenshot(path=str(ARTIFACTS / "ethercat-network.png"))
@@ -194,6 +194,6 @@ def test_disconnect_and_reconnect_a_slave(page, server: Server) -> None:
 
     page.get_by_test_id("ecat-fault-reconnect-2").click()
     _state(page, 2, "Op", timeout=15000)
-    page.get_by_test_id("ecat-slaves-in-op").filter(has_text=re.compile(r"3\s*/\s*3")).wait_for()
+    page.get_by_test_id("ecat-slaves-in-op").filter(has_text=re.compile(r"7\s*/\s*7")).wait_for()
     assert page.get_by_test_id("ecat-error-2").count() == 0
     assert not _unexpected(page.console_errors), page.console_errors

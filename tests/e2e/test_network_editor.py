@@ -1,11 +1,12 @@
 """Editing the EtherCAT network in the studio, in a real headless Chromium (docs/ethercat.md, "Editing the network in
 the studio").
 
-The demo project starts with an implicit network: three built-in CiA402 drives on nodes 1-3 for MC_Axis000-002
-(MC_Axis003 is virtual). The tests run in order on one server:
+The demo project starts with an implicit network: seven built-in CiA402 drives, on nodes 1-3 for MC_Axis000-002
+(MC_Axis003 is virtual) and on nodes 4-7 for the Delta3's arms and its conveyor (MC_Axis004-007). The tests run in
+order on one server:
 
 * the master settings (DC off, then on with another SYNC0 shift) are applied and the network stays implicit;
-* a device imported from an ESI file is added as a new slave (next free node 4, name E004) and reaches Op;
+* a device imported from an ESI file is added as a new slave (next free node 8, name E008) and reaches Op;
 * a node address already in use is refused, with the reason on the node address field; a node address change of a
   slave that an axis uses moves the axis along (or, without that, is refused with the axis' problem on the field);
 * a start-up SDO line that the drive aborts (2999h does not exist) keeps that slave in Pre-Op with its reason, and
@@ -117,8 +118,8 @@ def test_add_an_imported_esi_device_as_a_new_slave(page, server: Server) -> None
     page.get_by_test_id("ecat-add-slave").click()
     dialog = page.get_by_test_id("add-slave-dialog")
     dialog.get_by_test_id("add-slave-node").wait_for()
-    assert dialog.get_by_test_id("add-slave-node").input_value() == "4"
-    assert dialog.get_by_test_id("add-slave-name").input_value() == "E004"
+    assert dialog.get_by_test_id("add-slave-node").input_value() == "8"
+    assert dialog.get_by_test_id("add-slave-name").input_value() == "E008"
     assert page.get_by_test_id("add-slave-confirm").is_disabled()  # no device chosen yet
     dialog.get_by_test_id("add-slave-device").click()
     page.get_by_role("option", name=re.compile("Generic CiA402 Servo Drive")).wait_for()
@@ -128,41 +129,41 @@ def test_add_an_imported_esi_device_as_a_new_slave(page, server: Server) -> None
     page.get_by_test_id("add-slave-confirm").click()
     dialog.wait_for(state="hidden", timeout=15000)
 
-    # the new slave is in the network view, after E003, and reaches Op (start-up: identity, PDO map, Safe-Op, Op)
-    _state(page, 4, "Op")
-    assert page.get_by_test_id("ecat-name-4").inner_text() == "E004"
-    assert page.get_by_test_id("ecat-device-4").inner_text() == device["name"]
-    assert page.get_by_test_id("ecat-slave-4").locator(".ecat-port").inner_text() == "4"
-    page.get_by_test_id("ecat-slaves-in-op").filter(has_text=re.compile(r"4\s*/\s*4")).wait_for()
-    page.locator('[data-testid="nav-slave-state-4"][data-state="Op"]').wait_for()
+    # the new slave is in the network view, after E007, and reaches Op (start-up: identity, PDO map, Safe-Op, Op)
+    _state(page, 8, "Op")
+    assert page.get_by_test_id("ecat-name-8").inner_text() == "E008"
+    assert page.get_by_test_id("ecat-device-8").inner_text() == device["name"]
+    assert page.get_by_test_id("ecat-slave-8").locator(".ecat-port").inner_text() == "8"
+    page.get_by_test_id("ecat-slaves-in-op").filter(has_text=re.compile(r"8\s*/\s*8")).wait_for()
+    page.locator('[data-testid="nav-slave-state-8"][data-state="Op"]').wait_for()
     slaves = _project(server)["ethercat"]["slaves"]  # the network is explicit now, the implicit slaves listed
     assert [(s["node_address"], s["device"]) for s in slaves] == [
-        (1, "builtin:cia402-servo"), (2, "builtin:cia402-servo"), (3, "builtin:cia402-servo"), (4, device["id"])]
+        *[(n, "builtin:cia402-servo") for n in range(1, 8)], (8, device["id"])]
     page.screenshot(path=str(ARTIFACTS / "network-slave-added.png"))
     assert not _unexpected(page.console_errors), page.console_errors
 
 
 def test_node_address_in_use_is_refused_on_the_field(page, server: Server) -> None:
     _open_network(page, server)
-    _state(page, 4, "Op")
-    _configure(page, 4, "general")
-    page.get_by_test_id("slave-axis-4").filter(has_text="No axis").wait_for()
-    page.get_by_test_id("slave-node-4").fill("2")
-    page.get_by_test_id("slave-dirty-4").wait_for()
-    page.get_by_test_id("slave-apply-4").click()
-    err = page.get_by_test_id("slave-error-4-node_address")
+    _state(page, 8, "Op")
+    _configure(page, 8, "general")
+    page.get_by_test_id("slave-axis-8").filter(has_text="No axis").wait_for()
+    page.get_by_test_id("slave-node-8").fill("2")
+    page.get_by_test_id("slave-dirty-8").wait_for()
+    page.get_by_test_id("slave-apply-8").click()
+    err = page.get_by_test_id("slave-error-8-node_address")
     err.filter(has_text="node address 2 is already used by E002").wait_for(timeout=10000)
-    assert "on the marked field" in page.get_by_test_id("slave-issues-4").inner_text()
+    assert "on the marked field" in page.get_by_test_id("slave-issues-8").inner_text()
     page.screenshot(path=str(ARTIFACTS / "network-node-in-use.png"))
-    assert _slave(server, 4) is not None and _slave(server, 2)["name"] == "E002"  # nothing was applied
-    page.get_by_test_id("slave-revert-4").click()
-    assert page.get_by_test_id("slave-node-4").input_value() == "4"
+    assert _slave(server, 8) is not None and _slave(server, 2)["name"] == "E002"  # nothing was applied
+    page.get_by_test_id("slave-revert-8").click()
+    assert page.get_by_test_id("slave-node-8").input_value() == "8"
     assert err.count() == 0
 
     # node 1 is MC_Axis000's drive: a new address without the axis is refused with the axis' problem on the field
     _configure(page, 1, "general")
     page.get_by_test_id("slave-axis-1").filter(has_text="MC_Axis000").wait_for()
-    page.get_by_test_id("slave-node-1").fill("7")
+    page.get_by_test_id("slave-node-1").fill("9")
     page.get_by_test_id("slave-move-axis-1").uncheck()
     page.get_by_test_id("slave-apply-1").click()
     page.get_by_test_id("slave-error-1-node_address").filter(
@@ -170,14 +171,14 @@ def test_node_address_in_use_is_refused_on_the_field(page, server: Server) -> No
     # moving the axis along applies both (the axis refers to its slave by node address)
     page.get_by_test_id("slave-move-axis-1").check()
     page.get_by_test_id("slave-apply-1").click()
-    _state(page, 7, "Op")
-    page.get_by_test_id("slave-config-7").wait_for()  # the configuration follows the slave to its new address
-    page.get_by_test_id("ecat-axis-7").filter(has_text="MC_Axis000").wait_for()
-    assert next(a for a in _project(server)["axes"] if a["name"] == "MC_Axis000")["node_address"] == 7
+    _state(page, 9, "Op")
+    page.get_by_test_id("slave-config-9").wait_for()  # the configuration follows the slave to its new address
+    page.get_by_test_id("ecat-axis-9").filter(has_text="MC_Axis000").wait_for()
+    assert next(a for a in _project(server)["axes"] if a["name"] == "MC_Axis000")["node_address"] == 9
     assert page.get_by_test_id("ecat-slave-1").count() == 0
     # and back
-    page.get_by_test_id("slave-node-7").fill("1")
-    page.get_by_test_id("slave-apply-7").click()
+    page.get_by_test_id("slave-node-9").fill("1")
+    page.get_by_test_id("slave-apply-9").click()
     _state(page, 1, "Op")
     page.get_by_test_id("ecat-axis-1").filter(has_text="MC_Axis000").wait_for()
     assert not _unexpected(page.console_errors), page.console_errors
@@ -243,9 +244,9 @@ def test_slave_not_connected_stays_in_init(page, server: Server) -> None:
     _state(page, 2, "Init")
     page.get_by_test_id("ecat-error-2").filter(has_text="not found on the wire").wait_for()
     page.locator('[data-testid="ecat-wired-2"][data-active="false"]').wait_for()
-    for node in (1, 3, 4):
+    for node in (1, 3, 4, 5, 6, 7, 8):
         _state(page, node, "Op")
-    page.get_by_test_id("ecat-slaves-in-op").filter(has_text=re.compile(r"3\s*/\s*4")).wait_for()
+    page.get_by_test_id("ecat-slaves-in-op").filter(has_text=re.compile(r"7\s*/\s*8")).wait_for()
     page.get_by_test_id("ecat-slave-2").scroll_into_view_if_needed()
     page.screenshot(path=str(ARTIFACTS / "network-not-connected.png"))
 
@@ -280,15 +281,15 @@ def test_edit_while_an_axis_moves_is_refused_with_409(page, server: Server) -> N
         "async () => (await (await fetch('/api/v1/axes/MC_Axis003')).json()).variables.Status.Continuous === true",
         timeout=10000)
 
-    _configure(page, 4, "general")
-    page.get_by_test_id("slave-name-4").fill("Gripper")
-    page.get_by_test_id("slave-apply-4").click()
-    refusal = page.get_by_test_id("slave-refusal-4")
+    _configure(page, 8, "general")
+    page.get_by_test_id("slave-name-8").fill("Gripper")
+    page.get_by_test_id("slave-apply-8").click()
+    refusal = page.get_by_test_id("slave-refusal-8")
     refusal.filter(has_text="an axis is moving").wait_for(timeout=10000)
     assert "409" in refusal.inner_text()
-    assert page.get_by_test_id("slave-name-4").input_value() == "Gripper"  # the edit is kept
+    assert page.get_by_test_id("slave-name-8").input_value() == "Gripper"  # the edit is kept
     page.screenshot(path=str(ARTIFACTS / "network-409.png"))
-    assert _slave(server, 4)["name"] == "E004"
+    assert _slave(server, 8)["name"] == "E008"
 
     # stopped, the same edit is applied
     stop = httpx.post(server.api("/fb"), json={"type": "MC_Stop", "inputs": {
@@ -301,8 +302,8 @@ def test_edit_while_an_axis_moves_is_refused_with_409(page, server: Server) -> N
     page.wait_for_function(
         "async () => (await (await fetch('/api/v1/axes/MC_Axis003')).json()).variables.Status.Standstill === true",
         timeout=10000)
-    _apply_slave(page, 4)
-    page.get_by_test_id("ecat-name-4").filter(has_text="Gripper").wait_for(timeout=10000)
+    _apply_slave(page, 8)
+    page.get_by_test_id("ecat-name-8").filter(has_text="Gripper").wait_for(timeout=10000)
     assert not _unexpected(page.console_errors), page.console_errors
 
 
@@ -319,12 +320,12 @@ def test_remove_slaves(page, server: Server) -> None:
     dialog.wait_for(state="hidden")
     _state(page, 1, "Op")
 
-    # node 4 has no axis: removed, the network view and the tree follow
-    _state(page, 4, "Op")
-    page.get_by_test_id("ecat-remove-4").click()
+    # node 8 has no axis: removed, the network view and the tree follow
+    _state(page, 8, "Op")
+    page.get_by_test_id("ecat-remove-8").click()
     page.get_by_test_id("remove-slave-confirm").click()
-    page.get_by_test_id("ecat-slave-4").wait_for(state="detached", timeout=15000)
-    page.get_by_test_id("nav-slave-4").wait_for(state="detached")
-    page.get_by_test_id("ecat-slaves-in-op").filter(has_text=re.compile(r"3\s*/\s*3")).wait_for()
-    assert [s["node_address"] for s in _project(server)["ethercat"]["slaves"]] == [1, 2, 3]
+    page.get_by_test_id("ecat-slave-8").wait_for(state="detached", timeout=15000)
+    page.get_by_test_id("nav-slave-8").wait_for(state="detached")
+    page.get_by_test_id("ecat-slaves-in-op").filter(has_text=re.compile(r"7\s*/\s*7")).wait_for()
+    assert [s["node_address"] for s in _project(server)["ethercat"]["slaves"]] == [1, 2, 3, 4, 5, 6, 7]
     assert not _unexpected(page.console_errors), page.console_errors

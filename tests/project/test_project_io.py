@@ -23,7 +23,11 @@ def _doc() -> dict:
 
 
 def test_demo_project_loads(demo_project: Project) -> None:
-    assert [a.name for a in demo_project.axes] == ["MC_Axis000", "MC_Axis001", "MC_Axis002", "MC_Axis003"]
+    assert [a.name for a in demo_project.axes] == [f"MC_Axis00{k}" for k in range(8)]
+    (robot,) = demo_project.groups  # MC_Axis004–006 are the Delta3's A0–A2 (docs/robot.md "3D view")
+    assert robot.name == "MC_Group000" and robot.axes == ["MC_Axis004", "MC_Axis005", "MC_Axis006"]
+    assert robot.kinematics is not None and (robot.kinematics.Rf, robot.kinematics.Rm, robot.kinematics.Lf,
+                                             robot.kinematics.Lm, robot.kinematics.theta) == (200, 50, 350, 800, 0)
     assert demo_project.schema_version == 1
     assert demo_project.controller.primary_period_us == 1000
 
@@ -135,7 +139,7 @@ def _cli(*args: str) -> subprocess.CompletedProcess[str]:
 def test_cli_validate_ok() -> None:
     r = _cli("validate", str(DEMO))
     assert r.returncode == 0, r.stderr
-    assert "OK" in r.stdout and "4 axes" in r.stdout
+    assert "OK" in r.stdout and "8 axes" in r.stdout
 
 
 def test_cli_validate_reports_paths(tmp_path: Path) -> None:

@@ -168,3 +168,16 @@ def test_forward_kinematics_of_the_feedback_is_the_platform_position(scene: Scen
         status, tcp = forward_point(view.spec.params, *angles)
         assert status == Status.OK
         np.testing.assert_allclose(view.platform.position, np.array(tcp) * MM, atol=1e-9)
+
+
+def test_group_error_stop_is_an_alarm(scene: SceneServer) -> None:
+    """A group in ErrorStop (`mc["groups"]`, `_sGROUP_REF` shape) shows its ErrorID even with healthy axes."""
+    c = Controller(delta_project())
+    scene.rebuild(c)
+    view = scene.robots[0].view
+    snap = _with_angles(c.snapshot, (10.0, 10.0, 10.0))
+    mc = dict(snap.mc)
+    mc["groups"] = ({"name": "MC_Group000", "Status": {"Ready": False, "Disabled": False, "ErrorStop": True},
+                     "MFaultLvl": {"Active": True, "Code": "6700"}},)
+    scene.update(dataclasses.replace(snap, mc=mc))
+    assert view.alarm_label.visible and "MC_Group000 ErrorStop 6700" in view.alarm_label.text

@@ -91,12 +91,14 @@ class ConveyorView:
         x = np.mod(np.arange(self.n_cleats) * pitch + position, self.n_cleats * pitch) - 0.5 * L
         return np.stack([x, np.zeros_like(x), np.zeros_like(x)], axis=-1) * MM
 
-    def set(self, position: float, workpieces: Sequence[Sequence[float]]) -> None:
-        """Conveyor axis position (mm) and the workpieces (x, y, z) mm in the conveyor CS; more than
-        `MAX_WORKPIECES` are not drawn."""
+    def set(self, position: float, workpieces: Sequence[Sequence[float]] | None = None) -> None:
+        """Conveyor axis position (mm) and the workpieces (x, y, z) mm in the conveyor CS (None: unchanged); more
+        than `MAX_WORKPIECES` are not drawn."""
         if position != self.position:
             self.cleats.batched_positions = self._cleat_positions(position)
             self.position = position
+        if workpieces is None:
+            return
         pts = np.zeros((MAX_WORKPIECES, 3))
         scales = np.zeros(MAX_WORKPIECES)
         n = min(len(workpieces), MAX_WORKPIECES)

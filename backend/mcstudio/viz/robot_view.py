@@ -10,7 +10,6 @@ translates: its position is the TCP), the bounded TCP trail, the alarm colours a
 from __future__ import annotations
 
 import math
-from collections import deque
 from collections.abc import Mapping
 from typing import Any
 
@@ -75,7 +74,10 @@ class RobotView:
         self.spec = spec
         self.style = RobotStyle.for_params(spec.params)
         self.root = f"/robots/{spec.group}"
-        self.trail: deque[tuple[float, float, float]] = deque(maxlen=TRAIL_POINTS)
+        self._trail_buf = np.zeros((TRAIL_POINTS, 3))
+        self._trail_head = 0
+        self._trail_n = 0
+        self._trail_last: tuple[float, float, float] = (0.0, 0.0, 0.0)
         self.pose: RobotPose | None = None
         self.reading: RobotReading | None = None
         self._alarm_shown: bool | None = None
@@ -199,13 +201,26 @@ class RobotView:
             self.alarm_label.text = text
 
     def _extend_trail(self, p: tuple[float, float, float]) -> None:
-        if self.trail and math.dist(self.trail[-1], p) < TRAIL_STEP_MM:
+        """Append a TCP point (mm) if it moved ≥ 1 mm; the last TRAIL_POINTS are kept in a ring buffer."""
+        if self._trail_n and math.dist(self._trail_last, p) < TRAIL_STEP_MM:
             return
-        self.trail.append(p)
-        if len(self.trail) >= 2:
-            pts = np.array(self.trail) * MM
+        self._trail_last = p
+        buf = self._trail_buf
+        buf[self._trail_head] = p
+        self._trail_head = (self._trail_head + 1) % TRAIL_POINTS
+        self._trail_n = min(self._trail_n + 1, TRAIL_POINTS)
+        if self._trail_n >= 2:
+            pts = (buf[:self._trail_n] if self._trail_n < TRAIL_POINTS else
+                   np.roll(buf, -self._trail_head, axis=0)) * MM  # oldest first
             self.trail_handle.points = np.stack([pts[:-1], pts[1:]], axis=1)
             self.trail_handle.visible = self.trail_visible
+
+    @property
+    def trail(self) -> np.ndarray:
+        """The trail's points (n, 3) mm, oldest first."""
+        if self._trail_n < TRAIL_POINTS:
+            return self._trail_buf[:self._trail_n].copy()
+        return np.roll(self._trail_buf, -self._trail_head, axis=0)
 
     def show_workspace(self, on: bool) -> None:
         for h in (getattr(self, "workspace", None), getattr(self, "workspace_edges", None)):
@@ -214,10 +229,11 @@ class RobotView:
 
     def show_trail(self, on: bool) -> None:
         self.trail_visible = on
-        self.trail_handle.visible = on and len(self.trail) >= 2
+        self.trail_handle.visible = on and self._trail_n >= 2
 
     def clear_trail(self) -> None:
-        self.trail.clear()
+        self._trail_n = 0
+        self._trail_head = 0
         self.trail_handle.visible = False
 
     def remove(self) -> None:

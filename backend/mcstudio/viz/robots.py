@@ -94,15 +94,23 @@ def axis_index(snapshot_axes: list[str], name: str) -> int | None:
 
 
 def _group_state(snap: Snapshot, group: str) -> tuple[str | None, int]:
-    """The group's state and ErrorID if the snapshot carries groups (`mc["groups"]`: name → (state, error))."""
-    groups = snap.mc.get("groups") if isinstance(snap.mc, dict) else None
-    if not isinstance(groups, Mapping):
+    """The group's state and ErrorID when the snapshot carries axes groups: `mc["groups"]` is a sequence of
+    `_sGROUP_REF`-shaped dicts (`name`, `Status` with one TRUE state, `MFaultLvl.Code` as 4 hex digits)."""
+    groups = snap.mc.get("groups") if isinstance(snap.mc, Mapping) else None
+    if not groups:
         return None, 0
-    entry = groups.get(group)
-    if entry is None:
-        return None, 0
-    state, error = entry[0], entry[1]
-    return (state if isinstance(state, str) else getattr(state, "name", str(state))), int(error)
+    for g in groups:
+        if not isinstance(g, Mapping) or g.get("name") != group:
+            continue
+        status = g.get("Status", {})
+        state = next((k for k, on in status.items() if on and k != "Ready"), None)
+        code = g.get("MFaultLvl", {}).get("Code", "0000")
+        try:
+            error = int(code, 16) if isinstance(code, str) else int(code)
+        except ValueError:
+            error = 0
+        return state, error
+    return None, 0
 
 
 def read_robot(spec: RobotSpec, snap: Snapshot, indices: tuple[int | None, int | None, int | None]) -> RobotReading:

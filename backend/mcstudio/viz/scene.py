@@ -219,11 +219,11 @@ class SceneServer:
         self.floor.position = (0.0, 0.0, floor * MM)
         # frame the robot from its base down to the workspace bottom, seen from the front right and a bit above
         height = top - bottom
-        centre = np.array([0.0, 0.0, 0.5 * (top + bottom)]) * MM
+        centre = np.array([0.0, 0.0, 0.5 * (top + bottom) + 0.06 * (top - bottom)]) * MM
         extent = max(height, 2.0 * radius) * MM
         direction = np.array([0.62, -0.95, 0.72])
         direction /= np.linalg.norm(direction)
-        eye = centre + direction * 1.3 * extent
+        eye = centre + direction * 1.05 * extent
         self._set_camera(position=tuple(float(v) for v in eye), look_at=tuple(float(v) for v in centre),
                          clients=move_clients)
 
@@ -269,7 +269,8 @@ class SceneServer:
                 for r, reading in zip(self.robots, readings, strict=True):
                     r.view.apply(reading)
                 if self.conveyor is not None:
-                    self.conveyor.set(conv, self._workpieces)
+                    changed = force or self._last_key is None or self._last_key[2] != self._workpieces_version
+                    self.conveyor.set(conv, self._workpieces if changed else None)
             self._last_key = key
         self.stats.add(time.perf_counter() - t0)
         return True
