@@ -170,6 +170,8 @@ ROWS: dict[str, Callable[..., FunctionBlock]] = {
                                                     Slave=axis, Execute=True, ReferenceTypeMaster="_mcFeedback",
                                                     ReferenceTypeAuxiliary="_mcFeedback"),
     "MC_ChangeAxisUse(used→unused)": _execute("MC_ChangeAxisUse", Execute=True, AxisUse="_mcUnusedAxis"),
+    "MC_SyncMoveVelocity": _execute("MC_SyncMoveVelocity", Execute=True, Velocity=5.0),
+    "MC_SyncMoveAbsolute": _execute("MC_SyncMoveAbsolute", Execute=True, Position=5.0),
 }
 
 # cells (state after) for columns A B C D F G H, with the verdict: "ok", "abort" or an ErrorID.
@@ -212,6 +214,8 @@ for _n in ("MC_CamIn", "MC_GearIn", "MC_MoveLink", "MC_CombineAxes"):
 TABLE["MC_GearInPos"] = {**MOTION, "B": ("E", "ok"), "C": ("H", MX), "D": ("H", MX)}
 for _n in ("MC_CamOut", "MC_GearOut"):
     TABLE[_n] = {**MOTION, **{col: ("H", SYNC_STOPPED) for col in "BCDF"}}
+TABLE["MC_SyncMoveVelocity"] = {**MOTION, "B": ("D", "ok"), "C": ("D", "ok"), "D": ("D", "ok")}
+TABLE["MC_SyncMoveAbsolute"] = {**MOTION, "B": ("C", "ok"), "C": ("C", "ok"), "D": ("C", "ok")}
 # column E (Synchronized: MC_GearIn running), A-3.4 column E
 COLUMN_E: dict[str, tuple[str, Any]] = {
     "MC_Power(Enable=TRUE)": ("E", "ok"), "MC_Power(Enable=FALSE)": ("A", "ok"),
@@ -226,6 +230,7 @@ COLUMN_E: dict[str, tuple[str, Any]] = {
     "MC_GearInPos": ("H", MX),
     "MC_CamOut": ("H", SYNC_STOPPED),  # *6: MC_GearIn, not MC_CamIn, is running
     "MC_GearOut": ("C", "ok"),  # *7
+    "MC_SyncMoveVelocity": ("D", "ok"), "MC_SyncMoveAbsolute": ("C", "ok"),
     "MC_ChangeAxisUse(used→unused)": ("H", 0x5702),
 }
 for _row, _cell in COLUMN_E.items():

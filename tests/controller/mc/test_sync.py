@@ -615,3 +615,37 @@ def test_sync_move_absolute_outputs_the_target_of_every_period() -> None:
     c.fb("MC_Stop", Axis=S, Execute=True, Deceleration=10.0)
     c.step(1)
     assert sm.CommandAborted and float(c.mc.cmd_vel[1]) == 0.0
+
+
+def test_sync_move_velocity_runs_the_drive_in_csv() -> None:
+    """MC_SyncMoveVelocity on a servo axis over EtherCAT: the drive switches to CSV (6061h = 9), the target velocity
+    of each period goes out in 60FFh (no ramp), the command position follows the feedback (`_mcCount`),
+    InVelocity, Continuous; MC_Stop ends it back in CSP decelerating from the velocity (MC_SyncMoveVelocity, D47)."""
+    c = _rig(slave_type="_mcServo")
+    ax = c.mc.by_name[S]
+    sv = c.fb("MC_SyncMoveVelocity", Axis=S, Execute=True, Velocity=50.0)
+    step_until(c, sv, "InVelocity")
+    assert ax.state == AxisState.Continuous and sv.Active
+    assert int(c.mc.drv_mode[ax.i]) == 9, "the drive reports CSV"
+    c.step(100)
+    assert float(c.mc.act_vel[ax.i]) == pytest.approx(50.0, rel=1e-3)
+    assert _pos(c, S) == pytest.approx(float(c.mc.act_pos[ax.i]) - 50.0 * 0.001, abs=1e-3), "Cmd = feedback"
+    c.set_inputs(sv.id, {"Velocity": -20.0})
+    c.step(3)
+    assert float(c.mc.act_vel[ax.i]) == pytest.approx(-20.0, rel=1e-3), "a new value applies at once"
+    stop = c.fb("MC_Stop", Axis=S, Execute=True, Deceleration=200.0)
+    c.step(1)
+    assert sv.CommandAborted and not sv.Busy
+    n = step_until(c, stop, "Done")
+    assert n == pytest.approx(100, abs=5), "from −20 u/s at 200 u/s²"
+    c.step(5)
+    assert int(c.mc.drv_mode[ax.i]) == 8, "back in CSP"
+
+
+def test_sync_move_velocity_needs_60ffh() -> None:
+    c = _rig(slave_type="_mcServo")
+    ax = c.mc.by_name[S]
+    c.mc.pdo_objects[ax.i] = set(c.mc.pdo_objects[ax.i]) - {0x60FF}
+    sv = c.fb("MC_SyncMoveVelocity", Axis=S, Execute=True, Velocity=5.0)
+    c.step(1)
+    assert sv.Error and sv.ErrorID == 0x3461

@@ -211,6 +211,8 @@ class Axis(AxisPlanning):
             self.current = None
             if job.kind == JobKind.TORQUE:
                 self.m.leave_torque(self.i)  # back to position control (CSP) at once (MC_TorqueControl rules)
+            elif job.kind == JobKind.CSV:
+                self.m.leave_csv(self.i)  # back to CSP with the servo locked at the feedback (decision D47)
         if job is self.buffered:
             self.buffered = None
             cur = self.current
@@ -412,7 +414,7 @@ class Axis(AxisPlanning):
         if blending:
             cur.replan = True  # re-plan the running move to reach its target at the transit velocity
             self.m.schedule(self)
-        elif cur.kind in (JobKind.VELOCITY, JobKind.JOG, JobKind.TORQUE) and cur.in_velocity:
+        elif cur.kind in (JobKind.VELOCITY, JobKind.JOG, JobKind.TORQUE, JobKind.CSV) and cur.in_velocity:
             self._promote_buffered()  # the running instruction has reached InVelocity / InTorque
         return 0
 
@@ -431,6 +433,7 @@ class Axis(AxisPlanning):
             JobKind.SYNC: S.Synchronized,
             JobKind.SYNC_OUT: S.Discrete,
             JobKind.CYCLIC: S.Discrete,
+            JobKind.CSV: S.Continuous,
         }.get(job.kind)
         if job.kind == JobKind.RESET_FE and self.state == S.Standstill:
             state = None  # MC_ResetFollowingError on a standing axis keeps Standstill (A-3.4: B → B; C/D/E → G)

@@ -36,10 +36,11 @@ class JobKind(enum.IntEnum):
     SYNC = 8  # Synchronized: MC_CamIn, MC_GearIn, MC_GearInPos, MC_MoveLink, MC_CombineAxes (a law in `sync.py`)
     SYNC_OUT = 9  # Discrete: MC_CamOut, MC_GearOut — decelerate the slave to 0 (Done at velocity 0)
     CYCLIC = 10  # Discrete: MC_SyncMoveAbsolute — a target position from the program every period (a law in sync.py)
+    CSV = 11  # Continuous: MC_SyncMoveVelocity — the drive in CSV with the program's velocity every period
 
 
 MOTION_KINDS = (JobKind.POSITION, JobKind.VELOCITY, JobKind.JOG, JobKind.TORQUE, JobKind.SYNC, JobKind.SYNC_OUT,
-                JobKind.CYCLIC)
+                JobKind.CYCLIC, JobKind.CSV)
 LAW_KINDS = (JobKind.SYNC, JobKind.CYCLIC)  # jobs whose command position a law computes in the sync stage
 
 

@@ -21,6 +21,7 @@ from ...drives.cia402 import (
     DI_POSITIVE_LIMIT,
     MODE_CSP,
     MODE_CST,
+    MODE_CSV,
     TP1_ENABLE,
     TP1_POS_EDGE,
     TP1_SOURCE_Z,
@@ -187,6 +188,11 @@ class MotionModule:
         self.trq_lim_dirty = True  # 60E0h/60E1h to be written in the next outputs stage
         self._trq_out = False  # the last outputs stage wrote torque-mode objects
         self._mode_check = False  # watch 6061h against the mode sent (a mode other than CSP was sent recently)
+        # MC_SyncMoveVelocity: the drive in CSV with the velocity the program writes every period (60FFh)
+        self.csv_active = np.zeros(n, dtype=bool)
+        self.csv_vel = np.zeros(n)
+        self._n_csv = 0
+        self._csv_out = False
         self._trq_left = np.full(n, -1, dtype=np.int64)  # period in which torque control last ended
         self.drv_mode = np.full(n, MODE_CSP, dtype=np.int8)  # 6061h modes of operation display
         self.prev_act_pos = np.zeros(n)  # Act.Pos of the previous period (Cmd.Pos during torque control)
@@ -416,12 +422,68 @@ class MotionModule:
             if axis.buffered is not None:
                 axis._promote_buffered()  # a buffered instruction takes over at InTorque
 
+    # ------------------------------------------------------------------ MC_SyncMoveVelocity (CSV)
+    def _start_csv(self, i: int, job: Any) -> None:
+        self.profiles.clear(i)
+        self.notify[i] = False
+        self.step_accdec[i] = False
+        self.target_checked[i] = False
+        if not self.csv_active[i]:
+            self.csv_active[i] = True
+            self._n_csv += 1
+        self.csv_vel[i] = job.velocity
+        job.in_velocity = False
+        job.status = JobStatus.ACTIVE
+        job.replan = False
+
+    def leave_csv(self, i: int) -> None:
+        """MC_SyncMoveVelocity ended: back to CSP with the command on the feedback position and the profile at the
+        feedback velocity, so the instruction that took over (MC_Stop, a positioning) decelerates from there
+        (decision D47)."""
+        if not self.csv_active[i]:
+            return
+        self.csv_active[i] = False
+        self._n_csv -= 1
+        self.csv_vel[i] = 0.0
+        if self.on_bus[i]:
+            self.cmd_pos[i] = self.act_pos[i]
+            self.prof_vel[i] = self.act_vel[i]
+        self.prof_acc[i] = 0.0
+
+    def _csv_stage(self) -> None:
+        """Axes in MC_SyncMoveVelocity: Cmd.Pos follows the feedback of the previous period while the drive is in
+        CSV (`_mcCount`), a virtual axis integrates the velocity; InVelocity once the drive runs the target."""
+        for i in np.flatnonzero(self.csv_active).tolist():
+            axis = self.axes[i]
+            job = axis.current
+            if job is None or job.kind != JobKind.CSV:
+                continue
+            v = job.velocity
+            self.csv_vel[i] = v
+            if self.on_bus[i]:
+                in_mode = bool(self.drv_mode[i] == MODE_CSV)
+                if in_mode:
+                    self.cmd_pos[i] = self.prev_act_pos[i]
+            else:
+                in_mode = True
+                self.cmd_pos[i] += v * self.period_s
+            self.prof_vel[i] = v if in_mode else 0.0
+            self.prof_acc[i] = 0.0
+            # InVelocity: the drive is in CSV and has run the target velocity for a period (a step change)
+            reached = in_mode and job.info.get("sent") == v
+            job.info["sent"] = v if in_mode else None
+            if reached != job.in_velocity:
+                job.in_velocity = reached
+                self.job_changed(job)
+                if reached and axis.buffered is not None:
+                    axis._promote_buffered()  # a buffered instruction takes over at InVelocity
+
     def _mode_switch_failed(self, i: int, reported: int) -> None:
         """The drive did not take the mode of operation sent within 1 s: 7439, servo OFF (free-run stop)."""
         axis = self.axes[i]
         job = axis.current
         source = None
-        if job is not None and job.kind == JobKind.TORQUE:
+        if job is not None and job.kind in (JobKind.TORQUE, JobKind.CSV):
             source = job.owner.label if job.owner is not None else None
             axis._end_job(job, JobStatus.ERROR, E.E_MODE_SWITCH)
         axis.raise_error(E.E_MODE_SWITCH, source=source, stop="free",
@@ -453,8 +515,9 @@ class MotionModule:
     def inputs(self) -> None:
         """Stage 2. Continuous values (positions, velocities, torques) every period; the discrete signals (statusword,
         modes display, digital inputs, touch probes, process-data state) only when their raw values changed."""
-        if self._n_trq:
-            self.prev_act_pos[:] = self.act_pos  # Cmd.Pos in torque control: Act.Pos of one period earlier
+        if self._n_trq or self._n_csv:
+            # Cmd.Pos in torque control and MC_SyncMoveVelocity: Act.Pos of one period earlier
+            self.prev_act_pos[:] = self.act_pos
         servo_changed = False
         if self.bus_rows.size:
             net = self.network
@@ -484,7 +547,7 @@ class MotionModule:
                 oe = self.servo_on[rows]
                 pending = (net.rx["modes_of_operation"][sl] != mode) & oe  # type: ignore[union-attr]
                 self._mode_wait = np.where(pending, self._mode_wait + 1, 0)
-                self._mode_check = bool(pending.any()) or self._trq_out
+                self._mode_check = bool(pending.any()) or self._trq_out or self._csv_out
                 for k in np.flatnonzero(self._mode_wait >= self._mode_limit):
                     self._mode_wait[k] = 0
                     self._mode_switch_failed(int(self.bus_rows[k]), int(mode[k]))
@@ -601,6 +664,8 @@ class MotionModule:
                 self.notify[i] = axis.on_profile_finished(job)
         if self._n_trq:
             self._torque_stage(cycle, T)
+        if self._n_csv:
+            self._csv_stage()
         if self.moving_groups:
             for group in list(self.moving_groups.values()):
                 group.step(cycle)
@@ -660,6 +725,9 @@ class MotionModule:
             return
         if job.kind in LAW_KINDS:
             self._start_sync(i, axis, job, own_call=start_cycle is None)
+            return
+        if job.kind == JobKind.CSV:
+            self._start_csv(i, job)
             return
         p0, v0, a0 = float(self.cmd_pos[i]), float(self.prof_vel[i]), float(self.prof_acc[i])
         try:
@@ -782,10 +850,15 @@ class MotionModule:
                     self._fault_resets = bool(self.fault_reset_req.any())
                     self._cw_key = None
                 rx["controlword"][sl] = cw
-            if self._n_trq or self._trq_out:
-                # torque control: CST with the command torque and the velocity limit (6071h, 607Fh)
+            if self._n_trq or self._trq_out or self._n_csv or self._csv_out:
+                # torque control: CST with the command torque and the velocity limit (6071h, 607Fh);
+                # MC_SyncMoveVelocity: CSV with the target velocity (60FFh)
                 ta = self.trq_active[rows]
-                rx["modes_of_operation"][sl] = np.where(ta, MODE_CST, MODE_CSP)
+                ca = self.csv_active[rows]
+                rx["modes_of_operation"][sl] = np.where(ta, MODE_CST, np.where(ca, MODE_CSV, MODE_CSP))
+                vel = np.clip(np.rint(self.csv_vel[rows] * self.ppu[rows]), -(2**31), 2**31 - 1)
+                rx["target_velocity"][sl] = np.where(ca, vel, 0)
+                self._csv_out = bool(ca.any())
                 rx["target_torque"][sl] = np.where(ta, np.clip(np.rint(self.trq_cmd[rows] * 10.0), -32768, 32767), 0)
                 vlim = np.clip(np.rint(self.trq_vlim[rows] * self.ppu[rows]), 0, 2**32 - 1)
                 rx["max_profile_velocity"][sl] = np.where(ta, vlim, 0)

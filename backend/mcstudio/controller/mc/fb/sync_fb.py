@@ -959,6 +959,70 @@ class MC_SyncMoveAbsolute(_SyncFB):
 
 MC_SyncMoveAbsolute._plain = False  # reads Position and the feedback every period: never asleep
 
+SYNC_MOVE_VELOCITY_PDO = (0x60FF, 0x6060, 0x6061)  # target velocity, modes of operation (display)
+
+
+class MC_SyncMoveVelocity(ExecuteFB):
+    DEF = FBDef(
+        name="MC_SyncMoveVelocity",
+        title="Cyclic synchronous velocity control",
+        summary="Puts the drive in CSV and outputs the velocity the program writes every period (no ramp); the "
+                "command position follows the feedback.",
+        kind="execute",
+        inouts=(Var("Axis", "_sAXIS_REF", None, "Axis"),),
+        inputs=(
+            I_EXECUTE,
+            Var("Velocity", "LREAL", 0.0, "Target velocity (signed; may change every period)", "unit/s",
+                "negative, positive, 0"),
+            Var("CmdPosMode", "_eMC_CMDPOS_MODE", 0, "_mcCount: the command position follows the feedback", None,
+                "0", allowed=(0,)),
+            Var("BufferMode", "_eMC_BUFFER_MODE", 0, "Behaviour on multi-execution", None, "0, 1", allowed=(0, 1)),
+        ),
+        outputs=(Var("InVelocity", "BOOL", False, "TRUE when the command velocity reached the target velocity"),
+                 O_BUSY, O_ACTIVE, O_ABORTED, O_ERROR, O_ERRORID),
+        spec="omron-axis-instructions.md MC_SyncMoveVelocity (seed 000 line 12163)",
+        notes="Ends back in CSP with the servo locked at the feedback position (generic CiA402 drive, decision D47).",
+    )
+
+    def _check(self, axis: Axis) -> int:
+        i = self.inp
+        if i["CmdPosMode"] != 0:
+            return 0x5495  # Command Current Position Count Selection Out of Range
+        if i["BufferMode"] not in (0, 1):
+            return E.E_BUFFER_MODE
+        if axis.pdo_missing(SYNC_MOVE_VELOCITY_PDO):
+            return 0x3461
+        return 0
+
+    def _velocity(self, axis: Axis) -> float:
+        v = self.inp["Velocity"]
+        vmax = axis.params.Operation.MaxVel
+        return max(-vmax, min(vmax, v))
+
+    def execute(self, axis: Axis) -> None:
+        verdict, code = axis.check_start("move")
+        if verdict == "abort":
+            self._finish("CommandAborted")
+            return
+        if code != E.E_AXIS_TYPE:
+            code = self._check(axis) or code
+        if code:
+            self.fail(code, axis)
+            return
+        job = Job(JobKind.CSV, self, buffer_mode=self.inp["BufferMode"])
+        job.velocity = self._velocity(axis)
+        self._submit(axis, job, "ok", 0)
+
+    def sync_job(self) -> None:
+        job, axis = self.job, self.axis
+        if job is not None and axis is not None and job.running:
+            job.velocity = self._velocity(axis)  # a new value applies at once (its rules)
+        super().sync_job()
+
+
+MC_SyncMoveVelocity._plain = False  # reads Velocity every period
+
 
 SYNC_CLASSES: tuple[type[ExecuteFB], ...] = (MC_CamIn, MC_CamOut, MC_GearIn, MC_GearInPos, MC_GearOut, MC_MoveLink,
-                                             MC_CombineAxes, MC_Phasing, MC_SyncOffsetPosition, MC_SyncMoveAbsolute)
+                                             MC_CombineAxes, MC_Phasing, MC_SyncOffsetPosition, MC_SyncMoveAbsolute,
+                                             MC_SyncMoveVelocity)
