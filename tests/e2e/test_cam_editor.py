@@ -6,7 +6,9 @@ The tests run in order on one server with the demo project (cam tables RiseDwell
   unsaved-changes marks; Save writes the table to the project, and after a reload the edit is there;
 * a straight line into a dwell is flagged on its segment row (continuity warning); Revert brings the saved nodes back;
 * CSV export (a download) and import of the same file give the same points (the table becomes imported data);
-* a cam table is added from the project tree and deleted again.
+* a cam table is added from the project tree and deleted again;
+* the test run cams MC_Axis000 on the virtual MC_Axis003 (MC_CamIn + MC_MoveVelocity through /fb): InSync, the slave
+  follows the table, the save is refused while it runs (409), Stop ends it and removes its instances.
 
 No sleeps: every wait is on something the page shows.
 """
@@ -130,4 +132,30 @@ def test_add_and_delete_from_the_tree(page, server: Server) -> None:
     expect(page.get_by_test_id("cam-editor-Knife")).to_have_count(0)
     assert not (server.project_dir / "cams" / "Knife.csv").exists()
     assert [c["name"] for c in httpx.get(server.api("/cams")).json()] == ["RiseDwellReturn", "FlyingSync"]
+    assert _unexpected(page.console_errors) == []
+
+
+def test_cam_test_run_on_a_virtual_master(page, server: Server) -> None:
+    _open_cam(page, server, "RiseDwellReturn")
+    panel = page.get_by_test_id("cam-test-run")
+    panel.scroll_into_view_if_needed()
+    expect(page.get_by_test_id("cam-run-master")).to_have_value("MC_Axis003")
+    expect(page.get_by_test_id("cam-run-slave")).to_have_value("MC_Axis000")
+    page.get_by_test_id("cam-run-start").click()
+    expect(page.get_by_test_id("cam-run-insync")).to_have_text("InSync", timeout=10000)
+    expect(page.get_by_test_id("cam-run-stop")).to_be_visible()
+    expect(page.get_by_test_id("cam-run-index")).not_to_have_text("Index 0")
+    slave = httpx.get(server.api("/axes/MC_Axis000")).json()["variables"]
+    assert slave["Status"]["Synchronized"] and -0.001 <= slave["Cmd"]["Pos"] <= 150.001  # within the table's range
+    master = httpx.get(server.api("/axes/MC_Axis003")).json()["variables"]
+    assert master["Status"]["Continuous"] and master["Cmd"]["Vel"] > 0
+    # the table is in use: a write is refused with 409 (D45)
+    r = httpx.put(server.api("/cams/RiseDwellReturn"), json={"description": "x"})
+    assert r.status_code == 409 and "MC_CamIn" in r.json()["detail"]
+    page.screenshot(path=str(ARTIFACTS / "cam-test-run.png"))
+    page.get_by_test_id("cam-run-stop").click()
+    expect(page.get_by_test_id("cam-run-start")).to_be_visible(timeout=10000)
+    fbs = httpx.get(server.api("/snapshot")).json()["fbs"]
+    assert sorted(f["type"] for f in fbs.values()) == ["MC_Power", "MC_Power"]
+    assert httpx.get(server.api("/cams")).json()[0]["in_use"] == []
     assert _unexpected(page.console_errors) == []

@@ -19,6 +19,7 @@ import {
 import type { NumValue } from "../../store/forms";
 import { CamNodeTable } from "./CamNodeTable";
 import { CamPlots, type CamSeries } from "./CamPlots";
+import { CamTestRun } from "./CamTestRun";
 import { DeleteCamModal } from "./DeleteCamModal";
 import "./cams.css";
 
@@ -193,6 +194,10 @@ export function CamEditor({ name }: { name: string }) {
         {d && (
           <CamNodeTable name={name} nodes={d.nodes} issues={e.issues}
             segments={e.result?.characteristics.segments ?? null} jumps={jumps} />
+        )}
+        {e.info && (
+          <CamTestRun name={name} phaseEnd={e.info.phase_end} dirty={dirty}
+            defaultVelocity={table ? +(table.phase_end / table.cycle_time).toPrecision(6) : 360} />
         )}
       </div>
       <DeleteCamModal name={deleting ? name : null} onClose={() => setDeleting(false)} />

@@ -69,7 +69,7 @@ interface Props {
 export function CamNodeTable({ name, nodes, issues, segments, jumps }: Props) {
   return (
     <Table className="cam-node-table" withTableBorder withColumnBorders verticalSpacing={2} horizontalSpacing={4}
-      data-testid="cam-node-table" stickyHeader>
+      data-testid="cam-node-table">
       <Table.Thead>
         <Table.Tr>
           <Table.Th>#</Table.Th>
