@@ -262,3 +262,26 @@ def test_project_document_and_cams(client: TestClient, studio: Studio, project_d
     # opening the project folder again reads the files
     assert client.post(f"{API}/projects/open", json={"name": "demo"}).status_code == 200
     assert set(studio.controller.mc.cam_tables) == {"RiseDwellReturn", "FlyingSync", "Extra"}
+
+
+def test_busy_mc_camin_blocks_the_table(client: TestClient) -> None:
+    """With a real MC_CamIn (D45): Busy while camming → 409; after MC_Stop on the slave and deleting it → writable."""
+    for axis in ("MC_Axis003", "MC_Axis000"):
+        pw = client.post(f"{API}/fb", json={"type": "MC_Power", "inputs": {"Axis": axis, "Enable": True}}).json()
+        client.post(f"{API}/controller/step", json={"cycles": 500, "until": {"fb": pw["id"], "output": "Status",
+                                                                              "equals": True}})
+    cam = client.post(f"{API}/fb", json={"type": "MC_CamIn", "inputs": {
+        "Master": "MC_Axis003", "Slave": "MC_Axis000", "CamTable": "FlyingSync", "Execute": True, "Periodic": True}})
+    assert cam.status_code == 201, cam.text
+    cid = cam.json()["id"]
+    client.post(f"{API}/controller/step", json={"cycles": 5})
+    assert client.get(f"{API}/fb/{cid}").json()["outputs"]["Busy"] is True
+    assert client.get(f"{API}/cams").json()[1]["in_use"] == [f"MC_CamIn #{cid}"]
+    r = client.put(f"{API}/cams/FlyingSync", json={"description": "changed"})
+    assert r.status_code == 409 and f"MC_CamIn #{cid}" in r.json()["detail"]
+    stop = client.post(f"{API}/fb", json={"type": "MC_Stop", "inputs": {"Axis": "MC_Axis000", "Execute": True,
+                                                                        "Deceleration": 1000}}).json()
+    client.post(f"{API}/controller/step", json={"cycles": 100, "until": {"fb": stop["id"], "output": "Done",
+                                                                         "equals": True}})
+    assert client.get(f"{API}/fb/{cid}").json()["outputs"]["Busy"] is False
+    assert client.put(f"{API}/cams/FlyingSync", json={"description": "changed"}).status_code == 200
