@@ -40,10 +40,16 @@ def test_enable_makes_axes_coordinated_and_disable_releases_them(c: Controller) 
     mv = c.fb("MC_MoveAbsolute", Axis="MC_Axis000", Execute=True, Position=10.0, Velocity=10.0)
     c.step(1)
     assert mv.Error and mv.ErrorID == 0x543E
+    # column I: the axis stays Coordinated, the group goes b → e (543E is the group's error, decision D70)
+    assert g.state == G.ErrorStop and g.error_code == 0x543E and g.axes[0].state == AxisState.Coordinated
+    assert g.axes[0].error_code == 0
     dis = c.fb("MC_GroupDisable", AxesGroup="MC_Group000", Execute=True)
     step_until(c, dis, "Done")
-    assert g.state == G.Disabled and g.axes[1].state == AxisState.Standstill
-    assert g.axes[0].state == AxisState.ErrorStop  # 543E is an axis error of MC_Axis000 (A-1 source Axis)
+    assert g.state == G.ErrorStop  # MC_GroupDisable in e: the group stays e (D50)
+    assert all(a.state == AxisState.Standstill for a in g.axes)
+    rs = c.fb("MC_GroupReset", AxesGroup="MC_Group000", Execute=True)
+    step_until(c, rs, "Done")
+    assert g.state == G.Disabled and not mv.Error  # MC_GroupReset releases the instruction's Error
 
 
 def test_enable_refused_while_a_member_moves(c: Controller) -> None:

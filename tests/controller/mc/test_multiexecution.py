@@ -8,8 +8,10 @@ disabled" (A-1 #29, decision D6), 543D "axis type mismatch" on encoder axes (A-1
 
 Each case brings MC_Axis000 into the state of a column, executes the instruction once and checks the instance's
 outputs, its ErrorID and the axis state one period later against the table cell. Column E (Synchronized) runs
-with MC_Axis000 geared to a moving MC_Axis001 (MC_GearIn); column I (Coordinated) needs the axes-group instructions
-and is listed as skipped cases so the table stays complete. Rows of instructions not registered yet are skipped.
+with MC_Axis000 geared to a moving MC_Axis001 (MC_GearIn); column I (Coordinated) with MC_Axis000 in the enabled
+MC_Group000 (MC_Axis000 + MC_Axis002, MC_GroupEnable): there the table's group columns (b Standby → b or e) are
+checked too, and a refused instruction is 543E, a group error (A-1 #31, decision D70). Rows of instructions not
+registered yet are skipped.
 """
 
 from __future__ import annotations
@@ -25,6 +27,8 @@ from mcstudio.controller.mc.cam.table import CamTable
 from mcstudio.controller.mc.enums import AxisState
 from mcstudio.controller.mc.fb.base import FunctionBlock
 from mcstudio.controller.mc.fb.registry import FB_TYPES
+from mcstudio.controller.mc.group import GroupState
+from mcstudio.project.models import AxesGroupConfig
 from tests.conftest import axis_project, power_on
 
 AX = "MC_Axis000"
@@ -57,6 +61,9 @@ def _controller(encoder_axis: bool = False) -> Controller:
     third = p.axes[1].model_copy(deep=True)
     third.name, third.number = "MC_Axis002", 2
     p.axes.append(third)  # the auxiliary axis of MC_CombineAxes
+    # column I: MC_Axis000 coordinated in MC_Group000 (enabled only there; a disabled group changes nothing)
+    p.groups.append(AxesGroupConfig(name="MC_Group000", number=0, composition="_mcXY",
+                                    axes=["MC_Axis000", "MC_Axis002"]))
     if encoder_axis:
         p.axes[1].type = "_mcEncdr"  # type: ignore[assignment]
         p.axes[1].node_address = 2
@@ -93,6 +100,8 @@ def _state(col: str) -> Rig:
         run = c.fb("MC_Stop", Axis=AX, Execute=True, Deceleration=1000.0)  # Stopping while Execute stays TRUE
     elif col == "H":
         run = c.fb("MC_ImmediateStop", Axis=AX, Execute=True)  # ErrorStop (5485), servo stays ON
+    elif col == "I":
+        run = c.fb("MC_GroupEnable", AxesGroup="MC_Group000", Execute=True)  # Standstill → Coordinated
     c.step(20)
     assert c.mc.axes[0].state == LETTER[col], f"could not reach state {col}"
     return Rig(c, pw, run)
@@ -118,7 +127,7 @@ def _power_off(rig: Rig, axis: str = AX) -> FunctionBlock:
 
 def _abort_trigger(rig: Rig, axis: str = AX) -> FunctionBlock:
     # MC_AbortTrigger aborts a latch owned by MC_TouchProbe: start one first where MC_TouchProbe is accepted
-    if rig.c.mc.axes[0].state != AxisState.Homing:
+    if rig.c.mc.axes[0].state not in (AxisState.Homing, AxisState.Coordinated):  # I: no latch owner (5440)
         rig.c.fb("MC_TouchProbe", Axis=axis, Execute=True, TriggerInput=EXT1)
         rig.c.step(1)
     return rig.c.fb("MC_AbortTrigger", Axis=axis, Execute=True, TriggerInput=EXT1)
@@ -235,6 +244,16 @@ COLUMN_E: dict[str, tuple[str, Any]] = {
 }
 for _row, _cell in COLUMN_E.items():
     TABLE[_row]["E"] = _cell
+# column I (Coordinated: MC_Group000 enabled, group Standby), A-3.4 columns I and b with A-3.8 rule 5: the axis stays
+# Coordinated; an instruction that drives the group to e (ErrorStop) is refused with 543E, a group error (D70).
+# MC_ChangeAxisUse is printed I → H with the group staying b: 5702, an axis error (D70).
+CO = 0x543E
+COLUMN_I_OK = {"MC_Power(Enable=TRUE)", "MC_Power(Enable=FALSE)", "MC_SetOverride", "MC_SetTorqueLimit",
+               "MC_ZoneSwitch", "MC_AxesObserve", "MC_Reset"}
+for _row in TABLE:
+    TABLE[_row]["I"] = ("I", "ok") if _row in COLUMN_I_OK else ("I", CO)
+TABLE["MC_ChangeAxisUse(used→unused)"]["I"] = ("H", 0x5702)
+GROUP_AFTER = {"ok": GroupState.Standby, CO: GroupState.ErrorStop, 0x5702: GroupState.Standby}
 
 _ENABLE_TYPE = {"MC_Power", "MC_MoveJog", "MC_SetOverride", "MC_SetTorqueLimit", "MC_ZoneSwitch", "MC_AxesObserve"}
 
@@ -243,12 +262,7 @@ def _cases() -> list[Any]:
     out = []
     for row, cells in TABLE.items():
         for col in "ABCDEFGHI":
-            cid = f"{row}-{col}"
-            if col == "I":
-                out.append(pytest.param(row, col, None, id=cid, marks=pytest.mark.skip(
-                    reason="Coordinated needs axes groups (later issue)")))
-            else:
-                out.append(pytest.param(row, col, cells[col], id=cid))
+            out.append(pytest.param(row, col, cells[col], id=f"{row}-{col}"))
     return out
 
 
@@ -277,6 +291,9 @@ def test_a3_cell(row: str, col: str, cell: tuple[str, Any]) -> None:
         assert out["Error"] and out["ErrorID"] == verdict, f"{row} in {col}: ErrorID {out['ErrorID']:04X}"
         code = f"{verdict:04X}0000"
         assert any(e.code == code for e in c.events.list()[before_events:]), f"no event {code}"
+    if col == "I":  # A-3.4 group column b (Standby): b for the administrative instructions, e for the refused ones
+        grp = c.mc.groups_by_name["MC_Group000"]
+        assert grp.state == GROUP_AFTER[verdict], f"{row} in I: group {grp.state.name}"
     if name == "MC_Power" and not out.get("Error"):
         c.step(50, Until(fb.id, "Status", after != "A" and (after != "H" or ax.servo_on)))
     if after == "-":

@@ -19,7 +19,7 @@ Verdict = Literal["ok", "abort"] | int
 
 # instruction class → verdict per state, in the order Disabled, Standstill, Discrete, Continuous, Synchronized,
 # Homing, Stopping, ErrorStop, Coordinated (A-3.4 columns A–I)
-_OK, _AB, _SV, _MX, _CO = "ok", "abort", E.E_SERVO_OFF, E.E_MULTIEXEC_DISABLED, 0x543E
+_OK, _AB, _SV, _MX, _CO = "ok", "abort", E.E_SERVO_OFF, E.E_MULTIEXEC_DISABLED, E.E_COORDINATED
 TABLE: dict[str, tuple[Verdict, ...]] = {
     # MC_Move, MC_MoveAbsolute, MC_MoveRelative, MC_MoveZeroPosition, MC_MoveVelocity, MC_MoveFeed,
     # MC_TorqueControl, MC_SyncMoveVelocity, MC_SyncMoveAbsolute, MC_CamIn, MC_GearIn, MC_MoveLink, MC_CombineAxes

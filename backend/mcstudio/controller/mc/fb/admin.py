@@ -100,6 +100,9 @@ class MC_ImmediateStop(OneShotFB):
         if axis.encoder:
             self.fail(E.E_AXIS_TYPE, axis)
             return
+        if axis.state == AxisState.Coordinated:
+            self.fail(E.E_COORDINATED, axis)  # column I: the group → e, the axis stays Coordinated (D70)
+            return
         axis.immediate_stop(mode, self.label)
         self.done_next()
 

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, ClassVar
 
 from ..enums import ENUMS
-from ..errors import E_ILLEGAL_AXIS, E_REEXEC_DISABLED
+from ..errors import E_COORDINATED, E_ILLEGAL_AXIS, E_REEXEC_DISABLED
 from ..jobs import JobStatus
 
 if TYPE_CHECKING:
@@ -361,6 +361,13 @@ class FunctionBlock:
 
     def fail(self, code: int, axis: Axis | None, *, fault_axis: bool = True) -> None:
         """The instruction ends in Error with `code`; the axis gets the minor fault (A-1 source Axis)."""
+        if code == E_COORDINATED and axis is not None and axis.group is not None:
+            # 543E on a Coordinated axis is the group's error: the group decelerates to a stop and the axis stays
+            # Coordinated (A-3.4 column I → group e; A-1 #31; decision D70). MC_GroupReset releases the outputs.
+            grp = axis.group
+            self._set_error(code, grp)  # type: ignore[arg-type]
+            grp.raise_error(code, source=self.label)
+            return
         self._set_error(code, axis)
         if axis is not None and fault_axis:
             axis.raise_error(code, source=self.label)

@@ -231,6 +231,8 @@ class MC_Stop(ExecuteFB):
                 code = E.E_BUFFER_MODE
             if not code and axis.encoder:
                 code = E.E_AXIS_TYPE
+            if not code and axis.state.name == "Coordinated":
+                code = E.E_COORDINATED  # column I: the group → e, the axis stays Coordinated (D70)
             if code:
                 self.fail(code, axis)
                 return
