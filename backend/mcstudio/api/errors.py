@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from fastapi import FastAPI, Request
+from fastapi.encoders import jsonable_encoder
+from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse
 
 from ..controller.kernel import KernelError
@@ -17,7 +20,23 @@ def _err(loc: list[Any], msg: str, typ: str = "value_error", **extra: Any) -> di
     return {"loc": loc, "msg": msg, "type": typ, **extra}
 
 
+def _finite(v: Any) -> Any:
+    """NaN/±inf (Python's json accepts the literals) echoed back as strings: JSON cannot carry them."""
+    if isinstance(v, float) and not math.isfinite(v):
+        return str(v)
+    if isinstance(v, dict):
+        return {k: _finite(x) for k, x in v.items()}
+    if isinstance(v, list | tuple):
+        return [_finite(x) for x in v]
+    return v
+
+
 def install(app: FastAPI) -> None:
+    @app.exception_handler(RequestValidationError)
+    async def _validation(_: Request, exc: RequestValidationError) -> JSONResponse:
+        # FastAPI's own 422, except that a non-finite input no longer turns it into a 500
+        return JSONResponse(status_code=422, content={"detail": _finite(jsonable_encoder(exc.errors()))})
+
     @app.exception_handler(FBInputError)
     async def _fb_input(_: Request, exc: FBInputError) -> JSONResponse:
         loc = ["body", "inputs", exc.field]

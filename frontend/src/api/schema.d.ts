@@ -269,6 +269,100 @@ export interface paths {
         patch?: never;
         trace?: never;
     };
+    "/api/v1/groups": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        /** All used axes groups with their state */
+        get: operations["list_groups_api_v1_groups_get"];
+        put?: never;
+        post?: never;
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/groups/{name}": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        /** Axes group settings and its `_sGROUP_REF` variables */
+        get: operations["get_group_api_v1_groups__name__get"];
+        put?: never;
+        post?: never;
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/groups/{name}/config": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        get?: never;
+        /**
+         * Replace the settings of one axes group
+         * @description Composition, composition axes, operation settings (limits), Delta3 kinematics and workspace. Validated like the whole project (paths in `detail` are relative to the project document); applying restarts the controller at cycle 0 and is refused with 409 while an axis moves.
+         */
+        put: operations["put_group_config_api_v1_groups__name__config_put"];
+        post?: never;
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/groups/{name}/kinematics/inverse": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        get?: never;
+        put?: never;
+        /**
+         * Inverse kinematics: TCP positions [mm, MCS] → joint angles A0–A2 [deg]
+         * @description With the group's Delta3 parameters (Rf, Lf, Rm, Lm, θ). A point outside the workspace (shrunk by 0.1 mm, docs/robot.md) or without a solution (570F) is a 422 naming the point; nothing is computed then.
+         */
+        post: operations["inverse_kin_api_v1_groups__name__kinematics_inverse_post"];
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/groups/{name}/kinematics/forward": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        get?: never;
+        put?: never;
+        /**
+         * Forward kinematics: joint angles A0–A2 [deg] → TCP positions [mm, MCS]
+         * @description With the group's Delta3 parameters. Angles without a solution (570F) are a 422 naming them; a position outside the workspace is returned with `inside` FALSE.
+         */
+        post: operations["forward_kin_api_v1_groups__name__kinematics_forward_post"];
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
     "/api/v1/fb-types": {
         parameters: {
             query?: never;
@@ -639,7 +733,43 @@ export interface components {
          * AxesGroupConfig
          * @description Axes-group basic settings (轴组基本设定, `_sGROUP_REF.Cfg` / `.Kinematics`) plus the operation settings.
          */
-        AxesGroupConfig: {
+        "AxesGroupConfig-Input": {
+            /**
+             * Name
+             * @description Axes group variable name (default MC_Group000 …); an identifier
+             */
+            name: string;
+            /**
+             * Number
+             * @description Axes group number (Cfg.GrpNo, index into _MC_GRP[])
+             */
+            number: number;
+            /**
+             * _eMC_GROUP_USE
+             * @description Axes group use
+             * @default 2
+             */
+            use: ("_mcUnusedGroup" | "_mcUsedGroup") | (1 | 2);
+            /**
+             * _eMC_GROUP_TYPE
+             * @description Axis composition (Kinematics.GrpType): _mcXY 2 axes, _mcXYZ 3, _mcXYZU 4
+             * @default 0
+             */
+            composition: ("_mcXY" | "_mcXYZ" | "_mcXYZU") | (0 | 1 | 2);
+            /**
+             * Axes
+             * @description Composition axes: axis names for the logical axes A0, A1 … (one per axis of the composition)
+             */
+            axes?: string[];
+            operation?: components["schemas"]["GroupOperationSettings-Input"];
+            /** @description Robot kinematics applied at start-up (implicit MC_SetKinTransform); null = none */
+            kinematics?: components["schemas"]["Delta3KinematicsConfig"] | null;
+        };
+        /**
+         * AxesGroupConfig
+         * @description Axes-group basic settings (轴组基本设定, `_sGROUP_REF.Cfg` / `.Kinematics`) plus the operation settings.
+         */
+        "AxesGroupConfig-Output": {
             /**
              * Name
              * @description Axes group variable name (default MC_Group000 …); an identifier
@@ -669,7 +799,7 @@ export interface components {
              * @description Composition axes: axis names for the logical axes A0, A1 … (one per axis of the composition)
              */
             axes?: string[];
-            operation?: components["schemas"]["GroupOperationSettings"];
+            operation?: components["schemas"]["GroupOperationSettings-Output"];
             /** @description Robot kinematics applied at start-up (implicit MC_SetKinTransform); null = none */
             kinematics?: components["schemas"]["Delta3KinematicsConfig"] | null;
         };
@@ -2079,12 +2209,167 @@ export interface components {
             /** Slave State */
             slave_state: string;
         };
+        /** ForwardKinIn */
+        ForwardKinIn: {
+            /**
+             * Axes
+             * @description Joint angles [A0, A1, A2] [deg]
+             */
+            axes?: number[] | null;
+            /**
+             * Axes List
+             * @description A batch of joint angles [deg]
+             */
+            axes_list?: number[][] | null;
+        };
+        /** ForwardKinOut */
+        ForwardKinOut: {
+            /**
+             * Position
+             * @description TCP position [x, y, z] in the MCS [mm] (for `axes`)
+             */
+            position?: number[] | null;
+            /**
+             * Positions
+             * @description TCP positions per set (for `axes_list`)
+             */
+            positions?: number[][] | null;
+            /**
+             * Inside
+             * @description The TCP position lies in the group's workspace (for `axes`)
+             */
+            inside?: boolean | null;
+            /**
+             * Inside List
+             * @description Per TCP position: inside the workspace (`axes_list`)
+             */
+            inside_list?: boolean[] | null;
+        };
+        /** GroupCfgVar */
+        GroupCfgVar: {
+            /**
+             * Grpno
+             * @description Axes group number (index into _MC_GRP[])
+             */
+            GrpNo: number;
+            /**
+             * Grpenable
+             * @description _eMC_GROUP_USE enumerator
+             */
+            GrpEnable: string;
+            /** Execid */
+            ExecID: number;
+        };
+        /** GroupCmdVar */
+        GroupCmdVar: {
+            /**
+             * Vel
+             * @description Command interpolation velocity [command units/s]
+             */
+            Vel: number;
+            /**
+             * Accdec
+             * @description Command interpolation acceleration/deceleration [command units/s²]
+             */
+            AccDec: number;
+        };
+        /** GroupDetail */
+        GroupDetail: {
+            config: components["schemas"]["AxesGroupConfig-Output"];
+            variables: components["schemas"]["GroupVariables"];
+            /** Cycle */
+            cycle: number;
+        };
+        /** GroupDetailsVar */
+        GroupDetailsVar: {
+            /**
+             * Idle
+             * @description No group instruction is running
+             */
+            Idle: boolean;
+            /** Inposwaiting */
+            InPosWaiting: boolean;
+        };
+        /** GroupKinematicsVar */
+        GroupKinematicsVar: {
+            /**
+             * Grptype
+             * @description _eMC_GROUP_TYPE: _mcXY, _mcXYZ, _mcXYZU
+             */
+            GrpType: string;
+            /**
+             * Axis
+             * @description Axis numbers of the logical axes A0–A3 (0 where unused)
+             */
+            Axis: number[];
+        };
         /**
          * GroupOperationSettings
          * @description Sysmac Studio's axes-group operation settings (轴组动作设定): the limits of the interpolation instructions
          *     (seed 000 lines 1916–1951, 15772; seed 003 line 2405). Units are the composition axes' command units.
          */
-        GroupOperationSettings: {
+        "GroupOperationSettings-Input": {
+            /**
+             * Maxinterpolationvel
+             * @description Maximum interpolation velocity [unit/s] (最高插补速度): upper limit of Velocity of the interpolation instructions and of the override result
+             * @default 800000000
+             */
+            MaxInterpolationVel: number;
+            /**
+             * Maxinterpolationacc
+             * @description Maximum interpolation acceleration [unit/s²] (最大插补加速度); 0 = no limit
+             * @default 0
+             */
+            MaxInterpolationAcc: number;
+            /**
+             * Maxinterpolationdec
+             * @description Maximum interpolation deceleration [unit/s²] (最大插补减速度); 0 = no limit
+             * @default 0
+             */
+            MaxInterpolationDec: number;
+            /**
+             * _eMC_ACCDECOVER
+             * @description Interpolation acceleration/deceleration over
+             * @default 0
+             */
+            InterpolationAccDecOver: ("_mcAccDecOverBuffer" | "_mcAccDecOverRapid" | "_mcAccDecOverErrorStop") | (0 | 1 | 2);
+            /**
+             * Interpolationvelwarningval
+             * @description Interpolation velocity warning value [% of MaxInterpolationVel]; 0 = none
+             * @default 0
+             */
+            InterpolationVelWarningVal: number;
+            /**
+             * Interpolationaccwarningval
+             * @description Interpolation acceleration warning value [% of MaxInterpolationAcc]; 0 = none
+             * @default 0
+             */
+            InterpolationAccWarningVal: number;
+            /**
+             * Interpolationdecwarningval
+             * @description Interpolation deceleration warning value [% of MaxInterpolationDec]; 0 = none
+             * @default 0
+             */
+            InterpolationDecWarningVal: number;
+            /**
+             * _eMC_STOP_MODE
+             * @description Axes group stop method (轴组停止方法) on a group error: _mcImmediateStop, or _mcDecelerationStop = decelerate each axis to a stop; a robot group (kinematics set) always stops immediately
+             * @default 1
+             */
+            GroupStopMethod: ("_mcDecelerationStop" | "_mcImmediateStop") | (0 | 1);
+            /**
+             * Correctionallowanceratio
+             * @description Centre correction allowance ratio [%] (中心点修正容许率) of MC_MoveCircular2D in centre mode; 0 = no check (5449 beyond it)
+             * @default 0.1
+             */
+            CorrectionAllowanceRatio: number;
+        };
+        /**
+         * GroupOperationSettings
+         * @description Sysmac Studio's axes-group operation settings (轴组动作设定): the limits of the interpolation instructions
+         *     (seed 000 lines 1916–1951, 15772; seed 003 line 2405). Units are the composition axes' command units.
+         */
+        "GroupOperationSettings-Output": {
             /**
              * Maxinterpolationvel
              * @description Maximum interpolation velocity [unit/s] (最高插补速度): upper limit of Velocity of the interpolation instructions and of the override result
@@ -2141,6 +2426,81 @@ export interface components {
              * @default 0.1
              */
             CorrectionAllowanceRatio: number;
+        };
+        /**
+         * GroupStatusVar
+         * @description `Status`: Ready plus the five exclusive group states (A-3 letters a–e).
+         */
+        GroupStatusVar: {
+            /**
+             * Ready
+             * @description Standby, every composition axis servo ON, home defined and not held by MC_Stop
+             */
+            Ready: boolean;
+            /** Disabled */
+            Disabled: boolean;
+            /** Standby */
+            Standby: boolean;
+            /** Moving */
+            Moving: boolean;
+            /** Stopping */
+            Stopping: boolean;
+            /** Errorstop */
+            ErrorStop: boolean;
+        };
+        /** GroupSummary */
+        GroupSummary: {
+            /** Name */
+            name: string;
+            /** Number */
+            number: number;
+            /**
+             * Composition
+             * @description _eMC_GROUP_TYPE enumerator
+             */
+            composition: string;
+            /**
+             * Axes
+             * @description Composition axes for A0, A1, …
+             */
+            axes: string[];
+            /**
+             * State
+             * @description The Status member that is TRUE: Disabled, Standby, Moving, Stopping, ErrorStop
+             */
+            state: string;
+            /** Ready */
+            ready: boolean;
+            /**
+             * Error Code
+             * @description MFaultLvl.Code, 0000 = none
+             */
+            error_code: string;
+            /**
+             * Kinematics
+             * @description Robot kinematics type (delta3) or null
+             */
+            kinematics: string | null;
+            /** Cmd Pos */
+            cmd_pos: number[];
+        };
+        /**
+         * GroupVariables
+         * @description `_sGROUP_REF`.
+         */
+        GroupVariables: {
+            Status: components["schemas"]["GroupStatusVar"];
+            Details: components["schemas"]["GroupDetailsVar"];
+            Cmd: components["schemas"]["GroupCmdVar"];
+            MFaultLvl: components["schemas"]["RefEvent"];
+            Obsr: components["schemas"]["RefEvent"];
+            Cfg: components["schemas"]["GroupCfgVar"];
+            Kinematics: components["schemas"]["GroupKinematicsVar"];
+            /**
+             * Cmdpos
+             * @description Command current positions of the composition axes A0, A1, …
+             */
+            CmdPos: number[];
         };
         /** HTTPValidationError */
         HTTPValidationError: {
@@ -2384,6 +2744,32 @@ export interface components {
             tx_hex: string;
             /** Cycle */
             cycle: number;
+        };
+        /** InverseKinIn */
+        InverseKinIn: {
+            /**
+             * Position
+             * @description TCP position [x, y, z] in the MCS [mm]
+             */
+            position?: number[] | null;
+            /**
+             * Positions
+             * @description A batch of TCP positions [mm]
+             */
+            positions?: number[][] | null;
+        };
+        /** InverseKinOut */
+        InverseKinOut: {
+            /**
+             * Axes
+             * @description Joint angles [A0, A1, A2] [deg] (for `position`)
+             */
+            axes?: number[] | null;
+            /**
+             * Axes List
+             * @description Joint angles per point (for `positions`)
+             */
+            axes_list?: number[][] | null;
         };
         /**
          * LimitSettings
@@ -3080,7 +3466,7 @@ export interface components {
              * Groups
              * @description Axes groups
              */
-            groups?: components["schemas"]["AxesGroupConfig"][];
+            groups?: components["schemas"]["AxesGroupConfig-Output"][];
             /**
              * Cams
              * @description Cam tables (cam data variables); their points are in cams/<name>.csv
@@ -4352,6 +4738,207 @@ export interface operations {
                 content: {
                     "application/json": components["schemas"]["HTTPValidationError"];
                 };
+            };
+        };
+    };
+    list_groups_api_v1_groups_get: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        requestBody?: never;
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["GroupSummary"][];
+                };
+            };
+        };
+    };
+    get_group_api_v1_groups__name__get: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path: {
+                name: string;
+            };
+            cookie?: never;
+        };
+        requestBody?: never;
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["GroupDetail"];
+                };
+            };
+            /** @description No such (used) axes group */
+            404: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description Validation Error */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["HTTPValidationError"];
+                };
+            };
+        };
+    };
+    put_group_config_api_v1_groups__name__config_put: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path: {
+                name: string;
+            };
+            cookie?: never;
+        };
+        requestBody: {
+            content: {
+                "application/json": components["schemas"]["AxesGroupConfig-Input"];
+            };
+        };
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["AxesGroupConfig-Output"];
+                };
+            };
+            /** @description No such axes group */
+            404: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description Axes are moving */
+            409: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description Validation Error */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["HTTPValidationError"];
+                };
+            };
+        };
+    };
+    inverse_kin_api_v1_groups__name__kinematics_inverse_post: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path: {
+                name: string;
+            };
+            cookie?: never;
+        };
+        requestBody: {
+            content: {
+                "application/json": components["schemas"]["InverseKinIn"];
+            };
+        };
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["InverseKinOut"];
+                };
+            };
+            /** @description No such (used) axes group */
+            404: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description The group has no robot kinematics */
+            409: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description A point outside the workspace or without a kinematic solution; `loc` names it */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+        };
+    };
+    forward_kin_api_v1_groups__name__kinematics_forward_post: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path: {
+                name: string;
+            };
+            cookie?: never;
+        };
+        requestBody: {
+            content: {
+                "application/json": components["schemas"]["ForwardKinIn"];
+            };
+        };
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["ForwardKinOut"];
+                };
+            };
+            /** @description No such (used) axes group */
+            404: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description The group has no robot kinematics */
+            409: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description A point outside the workspace or without a kinematic solution; `loc` names it */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
             };
         };
     };
