@@ -181,3 +181,28 @@ def test_group_error_stop_is_an_alarm(scene: SceneServer) -> None:
                      "MFaultLvl": {"Active": True, "Code": "6700"}},)
     scene.update(dataclasses.replace(snap, mc=mc))
     assert view.alarm_label.visible and "MC_Group000 ErrorStop 6700" in view.alarm_label.text
+
+
+def test_trail_is_bounded_and_sent_when_the_robot_stops(scene: SceneServer) -> None:
+    """The trail keeps the last TRAIL_POINTS distinct TCP points (≥ 1 mm apart), oldest first; points added since
+    the last send go out with the first skipped (unchanged) frame."""
+    from mcstudio.viz.robot_view import TRAIL_POINTS, TRAIL_STEP_MM
+
+    c = Controller(delta_project())
+    scene.rebuild(c)
+    view = scene.robots[0].view
+    expected = [np.zeros(3)]  # the zero pose drawn by rebuild
+    angles = (0.0, 0.0, 0.0)
+    for k in range(TRAIL_POINTS + 200):  # the arms circle round: the TCP runs a closed path ~3 mm per frame
+        ph = 2.0 * np.pi * k / 200.0
+        angles = tuple(25.0 + 15.0 * np.sin(ph + j * 2.0 * np.pi / 3.0) for j in range(3))
+        scene.update(_with_angles(c.snapshot, angles))
+        tcp = np.array(forward_point(view.spec.params, *angles)[1])
+        if np.linalg.norm(tcp - expected[-1]) >= TRAIL_STEP_MM:
+            expected.append(tcp)
+    assert len(expected) > TRAIL_POINTS
+    np.testing.assert_allclose(view.trail, expected[-TRAIL_POINTS:], atol=1e-9)
+    scene.update(_with_angles(c.snapshot, angles))  # unchanged: skipped, but the trail's last points are sent
+    assert not view.trail_dirty
+    assert view.trail_handle.points.shape == (TRAIL_POINTS - 1, 2, 3)
+    np.testing.assert_allclose(view.trail_handle.points[-1, 1], expected[-1] * MM, atol=1e-6)

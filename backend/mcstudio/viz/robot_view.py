@@ -10,6 +10,7 @@ translates: its position is the TCP), the bounded TCP trail, the alarm colours a
 from __future__ import annotations
 
 import math
+import time
 from collections.abc import Mapping
 from typing import Any
 
@@ -56,6 +57,9 @@ ALARM_ROD_COLOR = (150, 30, 30)
 
 TRAIL_POINTS = 600  # bounded TCP trail: the last 600 distinct points …
 TRAIL_STEP_MM = 1.0  # … at least 1 mm apart
+# The trail is the largest message of a frame (up to 600 segments): it is sent at most 10 times a second, and once
+# more when the robot stops (SceneServer.update flushes it)
+TRAIL_INTERVAL_S = 0.1
 
 
 def _link_colors(alarm: bool) -> np.ndarray:
@@ -78,6 +82,8 @@ class RobotView:
         self._trail_head = 0
         self._trail_n = 0
         self._trail_last: tuple[float, float, float] = (0.0, 0.0, 0.0)
+        self._trail_sent = 0.0
+        self.trail_dirty = False
         self.pose: RobotPose | None = None
         self.reading: RobotReading | None = None
         self._alarm_shown: bool | None = None
@@ -209,11 +215,19 @@ class RobotView:
         buf[self._trail_head] = p
         self._trail_head = (self._trail_head + 1) % TRAIL_POINTS
         self._trail_n = min(self._trail_n + 1, TRAIL_POINTS)
-        if self._trail_n >= 2:
-            pts = (buf[:self._trail_n] if self._trail_n < TRAIL_POINTS else
-                   np.roll(buf, -self._trail_head, axis=0)) * MM  # oldest first
-            self.trail_handle.points = np.stack([pts[:-1], pts[1:]], axis=1)
-            self.trail_handle.visible = self.trail_visible
+        self.trail_dirty = True
+        if time.monotonic() - self._trail_sent >= TRAIL_INTERVAL_S:
+            self.flush_trail()
+
+    def flush_trail(self) -> None:
+        """Send the trail if points were added since it was last sent (caller holds `server.atomic()`)."""
+        if not self.trail_dirty or self._trail_n < 2:
+            return
+        pts = self.trail * MM
+        self.trail_handle.points = np.stack([pts[:-1], pts[1:]], axis=1)
+        self.trail_handle.visible = self.trail_visible
+        self.trail_dirty = False
+        self._trail_sent = time.monotonic()
 
     @property
     def trail(self) -> np.ndarray:
@@ -232,6 +246,7 @@ class RobotView:
         self.trail_handle.visible = on and self._trail_n >= 2
 
     def clear_trail(self) -> None:
+        self.trail_dirty = False
         self._trail_n = 0
         self._trail_head = 0
         self.trail_handle.visible = False

@@ -31,7 +31,7 @@ if TYPE_CHECKING:
 
 log = logging.getLogger(__name__)
 
-DEFAULT_FPS = 60.0
+DEFAULT_FPS = 30.0  # frames per second of the viz thread (each frame holds the GIL ~0.5 ms; docs/robot.md)
 
 
 @dataclass
@@ -264,6 +264,11 @@ class SceneServer:
             key = (tuple(r.key for r in readings), conv, self._workpieces_version)
             if key == self._last_key and not force:
                 self.stats.skipped += 1
+                dirty = [r.view for r in self.robots if r.view.trail_dirty]
+                if dirty:  # the robot stopped: the trail's last points
+                    with self.server.atomic():
+                        for view in dirty:
+                            view.flush_trail()
                 return False
             with self.server.atomic():
                 for r, reading in zip(self.robots, readings, strict=True):

@@ -45,9 +45,9 @@ function fmt(v: number | null | undefined, digits = 3): string {
 
 function stateColor(state: string): string {
   if (state === "ErrorStop") return "red";
-  if (state === "Disabled") return "gray";
-  if (state === "Standstill") return "teal";
-  return "blue";
+  if (state === "Disabled") return "dimmed";
+  if (state === "Standstill") return "teal.7";
+  return "blue.7";
 }
 
 function RobotCard({ robot }: { robot: RobotOut }) {
@@ -95,9 +95,10 @@ function RobotCard({ robot }: { robot: RobotOut }) {
                 {fmt(a.act_pos)}
               </Table.Td>
               <Table.Td>
-                <Badge size="xs" variant="dot" color={stateColor(a.state)}>
+                <Text size="xs" fw={500} c={stateColor(a.state)}>
                   {a.state}
-                </Badge>
+                  {a.error_code !== "0000" ? ` ${a.error_code}` : ""}
+                </Text>
               </Table.Td>
             </Table.Tr>
           ))}
@@ -137,7 +138,7 @@ export function RobotPanel({ active }: { active: boolean }) {
   return (
     <Paper
       data-testid="robot-panel"
-      w={290}
+      w={300}
       radius={0}
       p="sm"
       style={{ borderLeft: "1px solid var(--mantine-color-gray-3)", flex: "none", display: "flex", minHeight: 0 }}
