@@ -32,6 +32,9 @@ def main(argv: list[str] | None = None) -> int:
     cams.add_argument("--points", type=int, default=65535)
     kin = sub.add_parser("kinematics", help="Delta3 inverse/forward kinematics on 1e6 points")
     kin.add_argument("--points", type=int, default=1_000_000)
+    viz = sub.add_parser("viz", help="3D view of the demo robot: frame cost, and the realtime demo with the view on")
+    viz.add_argument("--frames", type=int, default=2000)
+    viz.add_argument("--seconds", type=float, default=10.0)
     r = sub.add_parser("realtime", help="the demo project paced to the wall clock: overruns, timing percentiles")
     r.add_argument("--seconds", type=float, default=600.0, help="wall time (default 10 minutes)")
     rest = sub.add_parser("rest", help="REST latency: FB PATCH until the output is visible (server process)")
@@ -60,6 +63,10 @@ def main(argv: list[str] | None = None) -> int:
         from . import kinematics
 
         result = kinematics.run(points=args.points)
+    elif args.scenario == "viz":
+        from . import viz as viz_bench
+
+        result = viz_bench.run(frames=args.frames, seconds=args.seconds)
     elif args.scenario == "realtime":
         from . import realtime
 

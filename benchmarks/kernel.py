@@ -53,11 +53,12 @@ def run(*, axes: int, sim_seconds: float, period_us: int, cam_share: float = 0.2
         c.fb("MC_Power", Axis=f"MC_Axis{i:03d}", Enable=True)
     c.step(10)
     moves = []
+    cams = []
     for i in range(axes):
         name = f"MC_Axis{i:03d}"
         if i in cam_slaves:  # follows the velocity axis i − 2 through the cam, periodically
-            c.fb("MC_CamIn", Master=f"MC_Axis{i - 2:03d}", Slave=name, CamTable="Cam", Execute=True, Periodic=True,
-                 ReferenceType="_mcLatestCommand")
+            cams.append(c.fb("MC_CamIn", Master=f"MC_Axis{i - 2:03d}", Slave=name, CamTable="Cam", Execute=True,
+                             Periodic=True, ReferenceType="_mcLatestCommand"))
         elif i % 2 == 0:
             moves.append(c.fb("MC_MoveAbsolute", Axis=name, Execute=True, Position=50.0 + i, Velocity=200.0,
                               Acceleration=2000.0, Deceleration=2000.0, Jerk=50000.0))
@@ -88,6 +89,7 @@ def run(*, axes: int, sim_seconds: float, period_us: int, cam_share: float = 0.2
         "scenario": "kernel",
         "axes": axes,
         "cam_followers": len(cam_slaves),
+        "cam_followers_in_sync": sum(1 for fb in cams if fb.InSync and not fb.Error),
         "period_us": period_us,
         "sim_s": sim,
         "wall_s": round(wall, 3),

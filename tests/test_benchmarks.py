@@ -45,3 +45,16 @@ def test_rest_scenario_against_a_server_process() -> None:
 
     r = api.run_rest(repetitions=3)
     assert set(r) >= KEYS and r["patch_to_output_ms"]["n"] == 3 and r["patch_to_websocket_ms"]["n"] == 3
+
+
+def test_kernel_scenario_with_cam_followers() -> None:
+    """The kernel scenario's cam followers really cam: ¼ of 8 axes follow a velocity axis through MC_CamIn."""
+    r = kernel.run(axes=8, sim_seconds=0.3, period_us=1000)
+    assert r["cam_followers"] == 2 and r["cam_followers_in_sync"] == 2
+
+
+@pytest.mark.parametrize("scenario", [["cams", "--points", "2000"], ["kinematics", "--points", "2000"]])
+def test_cam_and_kinematics_sub_commands(scenario: list[str]) -> None:
+    out = subprocess.run([sys.executable, "-m", "benchmarks", *scenario], cwd=ROOT, capture_output=True, text=True,
+                         check=True)
+    assert set(json.loads(out.stdout.strip().splitlines()[-1])) >= KEYS
