@@ -124,6 +124,10 @@ class AxesGroup:
         self.number = config.number
         self.op = config.operation
         self.kinematics = config.kinematics
+        # MC_SetKinTransform (fb/robot_fb.py): kinematics usable by the robot instructions from this cycle on (the
+        # period after Done, §9.1), and EnableWorkspace; the project's kinematics apply from cycle 0
+        self.kin_from_cycle = 0
+        self.workspace_check = True
         self.axes: list[Axis] = [module.by_name[n] for n in config.axes if n in module.by_name]
         self.idx: list[int] = [a.i for a in self.axes]
         self.enabled = False

@@ -38,7 +38,7 @@ INT_RANGES = {
 }
 
 
-STRUCT_TYPES = ("_sHOMING_REF", "_sAXIS_PARAM", "_sTRIGGER_REF")
+STRUCT_TYPES = ("_sHOMING_REF", "_sAXIS_PARAM", "_sTRIGGER_REF", "_sMC_KIN_REF", "_sMC_WORKSPACE_REF")
 # member names of the structures (a misspelt member is a 422 naming it, not silently the default value)
 STRUCT_MEMBERS: dict[str, frozenset[str]] = {
     "_sHOMING_REF": frozenset(("HomingMode", "HomeInput", "StartDir", "HomeDir", "PosiLmtMode", "NegaLmtMode", "Vel",
@@ -46,6 +46,8 @@ STRUCT_MEMBERS: dict[str, frozenset[str]] = {
                                "CompensationVel")),
     "_sTRIGGER_REF": frozenset(("Mode", "LatchID", "InputDrive")),
     "_sAXIS_PARAM": frozenset(("UnitConversion", "Operation", "OtherOperation", "Limit", "PosCount", "Homing")),
+    "_sMC_KIN_REF": frozenset(("KinType", "KinParam", "ExpansionParam")),
+    "_sMC_WORKSPACE_REF": frozenset(("WorkspaceType", "WorkspaceParam")),
 }
 
 
@@ -361,7 +363,7 @@ class FunctionBlock:
 
     def fail(self, code: int, axis: Axis | None, *, fault_axis: bool = True) -> None:
         """The instruction ends in Error with `code`; the axis gets the minor fault (A-1 source Axis)."""
-        if code == E_COORDINATED and axis is not None and axis.group is not None:
+        if code == E_COORDINATED and axis is not None and getattr(axis, "group", None) is not None:
             # 543E on a Coordinated axis is the group's error: the group decelerates to a stop and the axis stays
             # Coordinated (A-3.4 column I → group e; A-1 #31; decision D70). MC_GroupReset releases the outputs.
             grp = axis.group
