@@ -12,11 +12,12 @@ from .latch import LATCH_CLASSES
 from .robot_fb import ROBOT_CLASSES
 from .single_axis import FB_CLASSES
 from .sync_fb import SYNC_CLASSES
+from .timestamp import TIMESTAMP_CLASSES
 from .torque import TORQUE_CLASSES
 
 ALL_CLASSES: tuple[type[FunctionBlock], ...] = (*FB_CLASSES, *ADMIN_CLASSES, *HOMING_CLASSES, *COMMON_CLASSES,
                                                 *LATCH_CLASSES, *TORQUE_CLASSES, *SYNC_CLASSES,
-                                                *CAM_CLASSES)
+                                                *CAM_CLASSES, *TIMESTAMP_CLASSES)
 ALL_CLASSES = (*ALL_CLASSES, *GROUP_CLASSES)  # axes-group instructions (group_fb.py)
 ALL_CLASSES = (*ALL_CLASSES, *ROBOT_CLASSES)  # robot instructions (robot_fb.py)
 FB_TYPES: dict[str, type[FunctionBlock]] = {cls.DEF.name: cls for cls in ALL_CLASSES}
