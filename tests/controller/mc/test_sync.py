@@ -488,6 +488,50 @@ def test_movelink_moves_the_slave_distance_over_the_master_distance() -> None:
     assert not link.InSync
 
 
+def test_movelink_trigger_detection_in_controller_mode() -> None:
+    """LinkOption _mcTriggerDetection with a controller-mode trigger: the slave waits (InSync FALSE) until the
+    TriggerVariable rises, then links from the master position of that period (MC_MoveLink "LinkOption")."""
+    c = _rig()
+    _run_master(c, velocity=360.0)
+    s0 = _pos(c, S)
+    link = c.fb("MC_MoveLink", Master=M, Slave=S, Execute=True, SlaveDistance=100.0, MasterDistance=200.0,
+                MasterDistanceInACC=50.0, MasterDistanceInDEC=50.0, LinkOption="_mcTriggerDetection",
+                TriggerInput={"Mode": "_mcController", "LatchID": "_mcLatch1"}, ReferenceType="_mcLatestCommand")
+    c.step(100)
+    assert link.Active and not link.InSync and _pos(c, S) == s0, "waiting for the trigger"
+    c.set_inputs(link.id, {"TriggerVariable": True})
+    c.step(1)
+    m0 = _pos(c, M)
+    assert link.InSync
+    step_until(c, link, "Done")
+    assert _pos(c, S) - s0 == pytest.approx(100.0, abs=1e-9)
+    assert _pos(c, M) - m0 == pytest.approx(200.0, abs=0.37)
+
+
+def test_movelink_done_waits_for_in_position() -> None:
+    """A servo slave with an in-position check time: the command arrives first, Done follows only when the feedback
+    is within the in-position range (MC_MoveLink: "in-position check when the slave motion completes")."""
+    c = _rig(slave_type="_mcServo")
+    ax = c.mc.by_name[S]
+    ax.params.Operation.InPosCheckTime = 500
+    ax.params.Operation.InPosRange = 1e-4
+    _run_master(c, velocity=360.0)
+    s0 = _pos(c, S)
+    link = c.fb("MC_MoveLink", Master=M, Slave=S, Execute=True, SlaveDistance=50.0, MasterDistance=100.0,
+                ReferenceType="_mcLatestCommand")
+    arrived = None
+    for _ in range(2000):
+        c.step(1, publish=False)
+        if arrived is None and _pos(c, S) == pytest.approx(s0 + 50.0, abs=1e-12):
+            arrived = c.cycle
+            lag = abs(float(c.mc.act_pos[ax.i]) - _pos(c, S))
+            assert lag > 1e-4 and not link.Done, "the feedback is still on its way"
+        if link.Done:
+            break
+    assert arrived is not None and link.Done and c.cycle > arrived
+    assert abs(float(c.mc.act_pos[ax.i]) - (s0 + 50.0)) <= 1e-4
+
+
 def test_movelink_short_constant_section_is_5446() -> None:
     c = _rig()
     link = c.fb("MC_MoveLink", Master=M, Slave=S, Execute=True, SlaveDistance=10.0, MasterDistance=100.0,

@@ -284,6 +284,7 @@ class LinkLaw(Law):
         self.m0 = self.s0 = 0.0
         self.last_master = 0.0
         self.trigger: Any = None  # set by the instruction for _mcTriggerDetection
+        self.arrived_cycle = -1  # the master travel was complete (in-position check from here)
 
     @property
     def masters(self) -> tuple[int, ...]:
@@ -302,6 +303,22 @@ class LinkLaw(Law):
         v = (start_velocity if at_begin else master_velocity)(self.m, self.master.i, self.ref)
         self.sign = -1.0 if v < 0 else 1.0
         self._set("in_sync", True)
+
+    def _in_position(self, target: float) -> bool:
+        """MC_MoveLink completes with the in-position check ([In-position Range] within [In-position Check Time],
+        as positioning does; no check when the check time is 0)."""
+        op = self.slave.params.Operation
+        m, i = self.m, self.slave.i
+        if op.InPosCheckTime <= 0 or abs(m.act_pos.item(i) - target) <= op.InPosRange:
+            self.slave.in_pos_waiting = False
+            return True
+        if self.arrived_cycle < 0:
+            self.arrived_cycle = m.cycle
+        self.slave.in_pos_waiting = True
+        if (m.cycle - self.arrived_cycle) * m.period_s * 1000.0 >= op.InPosCheckTime:
+            self.slave.in_pos_waiting = False
+            self.slave.raise_error(0x6455, source=None, detail="MC_MoveLink: in-position check time exceeded")
+        return False
 
     def fraction(self, x: float) -> float:
         """Share of the slave distance done after master travel x (0 … M)."""
@@ -332,8 +349,9 @@ class LinkLaw(Law):
         x = (mpos - self.m0) * self.sign
         if x >= self.M:
             self._set("done", True)
-            self.finished = True
-            return self.s0 + self.S + self.offset
+            target = self.s0 + self.S + self.offset
+            self.finished = self._in_position(target)
+            return target
         return self.s0 + self.S * self.fraction(x) + self.offset
 
 

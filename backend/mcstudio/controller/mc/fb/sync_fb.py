@@ -16,6 +16,7 @@ from ..jobs import Job, JobKind, JobStatus
 from ..sync import REF_FEEDBACK, REF_LATEST, CamLaw, CombineLaw, CyclicPositionLaw, GearLaw, GearPosLaw, LinkLaw
 from ..units import fits_distance, fits_position
 from .base import I_EXECUTE, O_ABORTED, O_ACTIVE, O_BUSY, O_DONE, O_ERROR, O_ERRORID, ExecuteFB, FBDef, Var
+from .latch import IO_TRIGGER, IO_TRIGGER_VAR, _Latcher, latch_pdo_missing, parse_trigger
 from .single_axis import _clamp_profile
 
 if TYPE_CHECKING:
@@ -531,14 +532,14 @@ class MC_GearInPos(_SyncFB):
 
 
 # --------------------------------------------------------------------------------------------------- MC_MoveLink
-class MC_MoveLink(_SyncFB):
+class MC_MoveLink(_Latcher, _SyncFB):
     DEF = FBDef(
         name="MC_MoveLink",
         title="Synchronous positioning",
         summary="The slave moves SlaveDistance as a trapezoid over MasterDistance of master travel (acceleration "
                 "over MasterDistanceInACC, deceleration over MasterDistanceInDEC), after the start condition.",
         kind="execute",
-        inouts=(IO_MASTER, IO_SLAVE),
+        inouts=(IO_MASTER, IO_SLAVE, IO_TRIGGER, IO_TRIGGER_VAR),
         inputs=(
             I_EXECUTE, I_REFTYPE,
             Var("SlaveDistance", "LREAL", 0.0, "Slave travel distance", "unit", "negative, positive, 0"),
@@ -547,8 +548,8 @@ class MC_MoveLink(_SyncFB):
                 "positive or 0"),
             Var("MasterDistanceInDEC", "LREAL", 0.0, "Master travel while the slave decelerates", "unit",
                 "positive or 0"),
-            Var("LinkOption", "_eMC_LINKOPTION", 0, "Start condition: 0 at once, 2 when the master reaches "
-                "MasterStartDistance (1 trigger: not emulated)", None, "0, 2", allowed=(0, 2)),
+            Var("LinkOption", "_eMC_LINKOPTION", 0, "Start condition: 0 at once, 1 on the trigger (the slave's "
+                "latch or TriggerVariable), 2 when the master reaches MasterStartDistance", None, "0–2"),
             Var("MasterStartDistance", "LREAL", 0.0, "Master position where the link starts (LinkOption 2)",
                 "unit"),
             Var("BufferMode", "_eMC_BUFFER_MODE", 0, "Behaviour on multi-execution", None, "0, 1", allowed=(0, 1)),
@@ -559,10 +560,46 @@ class MC_MoveLink(_SyncFB):
             O_BUSY, O_ACTIVE, O_ABORTED, O_ERROR, O_ERRORID,
         ),
         spec="omron-axis-instructions.md MC_MoveLink (seed 000 line 9537)",
-        status="partial",
-        notes="LinkOption _mcTriggerDetection (a latch trigger) is not emulated yet and is refused with 5435.",
     )
     SYNC_OUTPUTS = ("InSync",)
+
+    def latch_active(self) -> bool:
+        return bool(self.out["Busy"]) and self._waiting_trigger
+
+    _waiting_trigger = False
+    _fired = False
+
+    def execute(self, axis: Axis) -> None:
+        super().execute(axis)
+        job = self.job
+        if job is None or self.inp["LinkOption"] != 1:
+            return
+        code = self._claim(axis, self._slot)
+        if code:
+            self.fail(code, axis)
+            return
+        self._fired = False
+        self._waiting_trigger = True
+        job.info["law"].trigger = lambda: self._fired
+        self._arm()
+
+    def watch(self) -> None:
+        """Each period while waiting for the trigger (the slave's drive latch or TriggerVariable)."""
+        job = self.job
+        if job is None or not job.running or job.status != JobStatus.ACTIVE:
+            return
+        if self._poll() is not None:
+            self._fired = True
+            self._waiting_trigger = False
+            self._release()
+
+    def on_job_end(self) -> None:
+        self._waiting_trigger = False
+        if hasattr(self, "_slot"):
+            self._release()
+
+    def on_delete(self) -> None:
+        self.on_job_end()
 
     def _check(self, slave: Axis) -> int:
         i = self.inp
@@ -580,8 +617,13 @@ class MC_MoveLink(_SyncFB):
             return E_MASTER_DIST_DEC
         if i["MasterDistanceInACC"] + i["MasterDistanceInDEC"] > i["MasterDistance"]:
             return E_LINK_SHORT
-        if i["LinkOption"] not in (0, 2):
+        if i["LinkOption"] not in (0, 1, 2):
             return E_LINK_OPTION
+        if i["LinkOption"] == 1:
+            err, self._mode, self._slot, self._z = parse_trigger(i.get("TriggerInput"))
+            code = err or latch_pdo_missing(slave, self._mode, self._slot)  # the slave's latch (drive mode)
+            if code:
+                return code
         if i["BufferMode"] not in (0, 1):
             return E.E_BUFFER_MODE
         return 0
