@@ -10,6 +10,7 @@ from .group_fb import GROUP_CLASSES
 from .homing_fb import HOMING_CLASSES
 from .latch import LATCH_CLASSES
 from .robot_fb import ROBOT_CLASSES
+from .robot_jog import ROBOT_JOG_CLASSES
 from .single_axis import FB_CLASSES
 from .sync_fb import SYNC_CLASSES
 from .timestamp import TIMESTAMP_CLASSES
@@ -20,4 +21,5 @@ ALL_CLASSES: tuple[type[FunctionBlock], ...] = (*FB_CLASSES, *ADMIN_CLASSES, *HO
                                                 *CAM_CLASSES, *TIMESTAMP_CLASSES)
 ALL_CLASSES = (*ALL_CLASSES, *GROUP_CLASSES)  # axes-group instructions (group_fb.py)
 ALL_CLASSES = (*ALL_CLASSES, *ROBOT_CLASSES)  # robot instructions (robot_fb.py)
+ALL_CLASSES = (*ALL_CLASSES, *ROBOT_JOG_CLASSES)  # MC Studio extension: Cartesian jog (robot_jog.py)
 FB_TYPES: dict[str, type[FunctionBlock]] = {cls.DEF.name: cls for cls in ALL_CLASSES}
