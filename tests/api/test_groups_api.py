@@ -26,7 +26,9 @@ def _step(client: TestClient, cycles: int) -> None:
 def test_list_groups_shows_the_demo_robot(client: TestClient) -> None:
     r = client.get(G)
     assert r.status_code == 200
-    (g,) = r.json()
+    g, xy = r.json()  # the Delta3 robot and the XY table of MC_Axis000/001
+    assert xy["name"] == "MC_Group001" and xy["composition"] == "_mcXY" and xy["kinematics"] is None
+    assert xy["axes"] == ["MC_Axis000", "MC_Axis001"] and xy["state"] == "Disabled"
     assert g["name"] == "MC_Group000" and g["number"] == 0 and g["composition"] == "_mcXYZ"
     assert g["axes"] == ["MC_Axis004", "MC_Axis005", "MC_Axis006"]
     assert g["state"] == "Disabled" and g["error_code"] == "0000" and g["kinematics"] == "delta3"

@@ -24,7 +24,9 @@ def _doc() -> dict:
 
 def test_demo_project_loads(demo_project: Project) -> None:
     assert [a.name for a in demo_project.axes] == [f"MC_Axis00{k}" for k in range(8)]
-    (robot,) = demo_project.groups  # MC_Axis004–006 are the Delta3's A0–A2 (docs/robot.md "3D view")
+    robot, xy = demo_project.groups  # MC_Axis004–006 are the Delta3's A0–A2 (docs/robot.md "3D view")
+    assert xy.name == "MC_Group001" and xy.composition.name == "_mcXY" and xy.axes == ["MC_Axis000", "MC_Axis001"]
+    assert xy.kinematics is None and xy.operation.MaxInterpolationVel == 500.0
     assert robot.name == "MC_Group000" and robot.axes == ["MC_Axis004", "MC_Axis005", "MC_Axis006"]
     assert robot.kinematics is not None and (robot.kinematics.Rf, robot.kinematics.Rm, robot.kinematics.Lf,
                                              robot.kinematics.Lm, robot.kinematics.theta) == (200, 50, 350, 800, 0)

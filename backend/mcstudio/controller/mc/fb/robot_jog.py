@@ -104,7 +104,7 @@ class MC_RobotJog(_GroupRef, FunctionBlock):
                  Var("CommandVelocity", "LREAL", 0.0, "TCP command speed", "mm/s"),
                  O_ABORTED, O_ERROR, O_ERRORID),
         spec="omron-robot-delta3.md §12.8 [Emulator] (Cartesian jog for the test run), §3.2 workspace, §11 codes",
-        status="MC Studio extension",
+        notes="MC Studio extension for the test run (not an NJ instruction; decision D90)",
     )
 
     def __init__(self, mc: Any, fb_id: int, inputs: dict[str, Any] | None = None) -> None:
