@@ -34,6 +34,7 @@ from .mc.fb.base import FBInputError, FunctionBlock
 from .mc.fb.registry import FB_TYPES
 from .mc.module import MotionModule
 from .mc.units import pulses_per_unit
+from .trace import TraceSet
 
 
 def sensor_layout(axes: list[AxisConfig | None]) -> SensorLayout:
@@ -161,6 +162,7 @@ class Controller:
         self._view_cache: dict[int, tuple[dict[str, Any], dict[str, Any], FBView]] = {}
         self._program_version = 0  # instances added or deleted (the snapshot then looks at every instance)
         self._snapshot_program = -1
+        self.traces = TraceSet(self)  # data traces, sampled at the end of each period (trace.py)
         self.snapshot: Snapshot = self._make_snapshot()
         self.events.add(cycle=0, time_s=0.0, source="controller", code="00000000", level="information",
                         message=f"project '{project.name}' loaded: {len(self.mc.axes)} axes, "
@@ -260,6 +262,8 @@ class Controller:
         self._program_stage(mc)
         mc.motion()
         mc.outputs()
+        if self.traces.running:
+            self.traces.sample(self.cycle)
         self.cycle += 1
 
     def _program_stage(self, mc: MotionModule) -> None:

@@ -34,6 +34,7 @@ from ..fieldbus.pdo import SlavePdoConfig
 from ..plant.ideal import DEFAULT_INERTIA, DEFAULT_LOAD_TORQUE, DEFAULT_RATED_TORQUE, DEFAULT_VISCOUS_FRICTION
 from .cam_models import MAX_CAMS, CamDefinition
 from .enumtypes import ManualEnum
+from .trace_models import MAX_TRACES, TraceSettings
 
 SCHEMA_VERSION = 1
 PROJECT_FILE = "project.json"
@@ -466,6 +467,8 @@ class Project(_Strict):
     cams: list[CamDefinition] = Field(
         default_factory=list, max_length=MAX_CAMS,
         description="Cam tables (cam data variables); their points are in cams/<name>.csv")
+    traces: list[TraceSettings] = Field(
+        default_factory=list, max_length=4 * MAX_TRACES, description="Saved data trace settings (docs/trace.md)")
 
     def axis(self, name: str) -> AxisConfig | None:
         return next((a for a in self.axes if a.name == name), None)
