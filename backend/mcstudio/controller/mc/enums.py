@@ -243,6 +243,13 @@ class _eMC_CIRC_PATHCHOICE(enum.IntEnum):
     _mcCCW = 1
 
 
+class _eMC_RBT_COORD_SYSTEM(enum.IntEnum):
+    """Coordinate system of the robot instructions (omron-robot-delta3.md §8.1; 2 is not defined)."""
+
+    _mcRBT_MCS = 1
+    _mcRBT_UCS = 3
+
+
 ENUMS: dict[str, type[enum.IntEnum]] = {
     cls.__name__: cls
     for cls in (
@@ -280,6 +287,7 @@ ENUMS: dict[str, type[enum.IntEnum]] = {
         _eMC_TRANSITION_MODE,
         _eMC_CIRC_MODE,
         _eMC_CIRC_PATHCHOICE,
+        _eMC_RBT_COORD_SYSTEM,
     )
 }
 

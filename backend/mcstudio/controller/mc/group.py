@@ -128,6 +128,8 @@ class AxesGroup:
         # period after Done, §9.1), and EnableWorkspace; the project's kinematics apply from cycle 0
         self.kin_from_cycle = 0
         self.workspace_check = True
+        # MC_DefineCoordSystem: user coordinate systems by CSID (volatile, robot.py)
+        self.coord_systems: dict[int, Any] = {}
         self.axes: list[Axis] = [module.by_name[n] for n in config.axes if n in module.by_name]
         self.idx: list[int] = [a.i for a in self.axes]
         self.enabled = False
@@ -619,6 +621,9 @@ class AxesGroup:
             return
         if job.kind == JobKind.GROUP_SYNC:
             self._step_sync(job, T)
+            return
+        if job.kind == JobKind.GROUP_ROBOT:
+            job.info["robot"].step(self, job, cycle)  # robot.py: MC_MoveTimeAbsolute, conveyor tracking
             return
         done_next = job.info.get("done_next")
         if done_next is not None:

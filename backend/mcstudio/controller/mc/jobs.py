@@ -32,6 +32,7 @@ class JobKind(enum.IntEnum):
     GROUP_MOVE = 20  # axes group: MC_MoveLinear*, MC_MoveCircular2D (a path of `group_path.py`, group.py)
     GROUP_STOP = 21  # axes group: MC_GroupStop
     GROUP_SYNC = 22  # axes group: MC_GroupSyncMoveAbsolute
+    GROUP_ROBOT = 23  # robot group: MC_MoveTimeAbsolute, MC_SyncLinearConveyor, MC_SyncOut (robot.py)
     TORQUE = 7  # Continuous: MC_TorqueControl (the drive in CST; torque stage of the MC module, no profile)
     SYNC = 8  # Synchronized: MC_CamIn, MC_GearIn, MC_GearInPos, MC_MoveLink, MC_CombineAxes (a law in `sync.py`)
     SYNC_OUT = 9  # Discrete: MC_CamOut, MC_GearOut — decelerate the slave to 0 (Done at velocity 0)

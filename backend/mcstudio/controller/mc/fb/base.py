@@ -39,7 +39,8 @@ INT_RANGES = {
 }
 
 
-STRUCT_TYPES = ("_sHOMING_REF", "_sAXIS_PARAM", "_sTRIGGER_REF", "_sMC_KIN_REF", "_sMC_WORKSPACE_REF")
+STRUCT_TYPES = ("_sHOMING_REF", "_sAXIS_PARAM", "_sTRIGGER_REF", "_sMC_KIN_REF", "_sMC_WORKSPACE_REF",
+                "_sMC_COORD_REF", "_sMC_MOVE_TRAJ_REF", "_sMC_SYNC_TRAJ_REF", "_sMC_SYNCOUT_TRAJ_REF")
 # member names of the structures (a misspelt member is a 422 naming it, not silently the default value)
 STRUCT_MEMBERS: dict[str, frozenset[str]] = {
     "_sHOMING_REF": frozenset(("HomingMode", "HomeInput", "StartDir", "HomeDir", "PosiLmtMode", "NegaLmtMode", "Vel",
@@ -49,6 +50,13 @@ STRUCT_MEMBERS: dict[str, frozenset[str]] = {
     "_sAXIS_PARAM": frozenset(("UnitConversion", "Operation", "OtherOperation", "Limit", "PosCount", "Homing")),
     "_sMC_KIN_REF": frozenset(("KinType", "KinParam", "ExpansionParam")),
     "_sMC_WORKSPACE_REF": frozenset(("WorkspaceType", "WorkspaceParam")),
+    # robot structures (omron-robot-delta3.md §8.2); the manual's spelling MaxVelociy is accepted as well
+    "_sMC_COORD_REF": frozenset(("CSID", "Pose")),
+    "_sMC_MOVE_TRAJ_REF": frozenset(("MoveTrajType", "TrajTime", "MaxVelocity", "MaxVelociy", "MaxAcceleration")),
+    "_sMC_SYNC_TRAJ_REF": frozenset(("SyncTrajType", "TrajTime", "TrajTransition", "TrajDistance", "MaxVelocity",
+                                     "MaxVelociy", "MaxAcceleration")),
+    "_sMC_SYNCOUT_TRAJ_REF": frozenset(("SyncStopType", "TrajTime", "TrajTransition", "TrajDistance", "MaxVelocity",
+                                        "MaxVelociy", "MaxAcceleration")),
 }
 
 
