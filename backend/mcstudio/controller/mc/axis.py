@@ -203,6 +203,8 @@ class Axis(AxisPlanning):
     def _end_job(self, job: Job | None, status: JobStatus, error_id: int = 0) -> None:
         if job is None or not job.running:
             return
+        if job.kind in LAW_KINDS:
+            self.m.sync_changed()  # the sync stage drops the law (sync_batch.py)
         job.status = status
         job.error_id = error_id
         job.finished_cycle = self.m.cycle
@@ -404,6 +406,7 @@ class Axis(AxisPlanning):
                 return E.E_MULTIEXEC_DISABLED
             job.status = JobStatus.WAITING
             self.buffered = job
+            self.m.sync_changed()  # the running cam must finish its cycle on its own (not in the batch)
             return 0
         if blending and not (cur.blendable and job.blendable):
             # Blending onto an instruction that does not accept it (MC_MoveVelocity, MC_MoveJog,

@@ -38,6 +38,7 @@ from .group import AxesGroup
 from .jobs import LAW_KINDS, JobKind, JobStatus
 from .profile import Planner, PlanningError, ProfileTable
 from .supervision import Supervision
+from .sync_batch import CamBatch, batchable
 
 if TYPE_CHECKING:
     from ...fieldbus.network import Network
@@ -142,7 +143,11 @@ class MotionModule:
         self.homing_axes: dict[int, Axis] = {}
         self.cam_tables: dict[str, CamTable] = {}  # cam data variables by name (the kernel fills them)
         self.sync_laws: dict[int, Law] = {}  # slaves under synchronized control (sync.py), by axis number
-        self._sync_order: list[int] = []  # their axis numbers in ascending order (masters with lower numbers first)
+        self._sync_order: list[int] = []  # per-law slaves in ascending axis number (masters with lower numbers first)
+        # steady periodic cam followers computed together (sync_batch.py); rebuilt when `sync_version` moves
+        self._batch: CamBatch | None = None
+        self.sync_version = 0
+        self._batch_version = -1
         # cam table instructions (fb/cam_fb.py): table name → instruction holding it, the running save/generation
         # (_MC_COM.Status.CamTableBusy / GenerateCamBusy), and how a save reaches the project folder
         self.cam_locks: dict[str, Any] = {}
@@ -778,7 +783,7 @@ class MotionModule:
         self.target_checked[i] = False
         self.stop_dec[i] = axis.params.Operation.MaxDec  # a slave error stops at the maximum deceleration
         self.sync_laws[i] = law
-        self._sync_order = sorted(self.sync_laws)
+        self.sync_version += 1
         job.status = JobStatus.ACTIVE
         if law.flags_changed:
             law.flags_changed = False
@@ -790,6 +795,10 @@ class MotionModule:
         of command positions; the profile acceleration is kept 0 (an instruction taking over starts from the
         slave's velocity; decision D38)."""
         laws = self.sync_laws
+        if self._batch_version != self.sync_version:
+            self._rebuild_batch()
+        if self._batch is not None:
+            self._batch.step(T)  # first: the batch's masters are not slaves, later per-law slaves may follow it
         cmd, pv, pa = self.cmd_pos, self.prof_vel, self.prof_acc
         finished: list[Law] = []
         stale: list[int] = []
@@ -814,12 +823,36 @@ class MotionModule:
         if stale:
             for i in stale:
                 del laws[i]  # aborted, stopped or replaced by another instruction
-            self._sync_order = sorted(laws)
+            self.sync_version += 1
         for law in finished:
             if laws.get(law.slave.i) is law:
                 del laws[law.slave.i]
-                self._sync_order = sorted(laws)
+                self.sync_version += 1
             law.slave.sync_finished(law)
+
+    def _rebuild_batch(self) -> None:
+        """Split the slaves into the batch of steady cam followers and the per-law rest (sync_batch.py)."""
+        old = self._batch
+        if old is not None:
+            old.write_back()
+        laws = self.sync_laws
+        active = JobStatus.ACTIVE
+        for i in [i for i, law in laws.items() if law.slave.current is not law.job or law.job.status != active]:
+            del laws[i]
+        batch = [laws[i] for i in sorted(laws) if self.batch_enabled and batchable(laws[i], laws)]
+        if len(batch) < self.batch_min:
+            batch = []  # a few followers are cheaper one by one (≈ 1 µs each against ≈ 17 µs for a batch)
+        in_batch = {law.slave.i for law in batch}
+        self._sync_order = [i for i in sorted(laws) if i not in in_batch]
+        self._batch = CamBatch(self, batch) if batch else None  # type: ignore[arg-type]
+        self._batch_version = self.sync_version
+
+    batch_enabled = True  # tests compare the batch with the per-law path by turning it off
+    batch_min = 16  # fewest steady followers worth a batch (measured: equal cost at 16, 17 against 81 µs at 64)
+
+    def sync_changed(self) -> None:
+        """Something the batch depends on changed (a law's table, phasing, offset, a buffered successor, InSync)."""
+        self.sync_version += 1
 
     # ------------------------------------------------------------------ stage 5: outputs
     def outputs(self) -> None:

@@ -129,6 +129,8 @@ class Law:
         if getattr(self, attr) != value:
             setattr(self, attr, value)
             self.flags_changed = True
+            if attr == "in_sync":
+                self.m.sync_changed()  # a cam follower may join the batch (sync_batch.py)
 
 
 # ------------------------------------------------------------------------------------------------------- gears
@@ -426,6 +428,8 @@ class CamLaw(Law):
         return isinstance(nxt, CamLaw) and nxt.master is self.master and nxt.ref == self.ref
 
     def set_table(self, table: CamTable) -> None:
+        if hasattr(self, "table"):
+            self.m.sync_changed()  # re-execution switches the table: the batch is rebuilt with the new data
         self.table = table
         p, d = table.valid()
         # Python lists: one bisection and one interpolation per period are several times cheaper than numpy calls

@@ -746,6 +746,7 @@ class _CompensationFB(ExecuteFB):
 
     def _attach(self, law: Any) -> None:
         self._law = law
+        self.mc.sync_changed()  # compensation: the follower leaves the batch (sync_batch.py)
         if not hasattr(law, "dependents"):
             law.dependents = []
         if self not in law.dependents:
