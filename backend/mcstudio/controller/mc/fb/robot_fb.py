@@ -1,4 +1,5 @@
-"""Robot instructions of the NJ501-4□□□ (`omron-robot-delta3.md` §9): MC_SetKinTransform and MC_InverseKin.
+"""Robot instructions of the NJ501-4□□□ (`omron-robot-delta3.md` §9): MC_SetKinTransform, MC_InverseKin,
+MC_DefineCoordSystem and MC_GroupMon (the motion instructions are in `robot_motion_fb.py`).
 
 MC_SetKinTransform registers Delta3 kinematics and a workspace on a group at run time (volatile, like the
 controller: the project's `kinematics` is the set-up applied at start-up). The checks and their order are §9.1's
@@ -10,15 +11,36 @@ position to ACS angles every period while Enable is TRUE. Readings: docs/decisio
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from ....project.models import Delta3KinematicsConfig, Delta3WorkspaceConfig
 from ..enums import _eMC_COUNT_MODE, _eMC_UNITS
 from ..errors import E_COORDINATED, E_HOME_UNDEFINED
 from ..group import E_ILLEGAL_GROUP, AxesGroup
-from ..kinematics import Status, check_kin_transform, contains_point, forward_point, inverse_point
-from ..kinematics.codes import E_KIN_CALC, E_KIN_INIT, E_KIN_PARAM, E_KIN_TYPE, E_WORKSPACE_PARAM, E_WORKSPACE_TYPE
+from ..kinematics import (
+    Status,
+    UserCoordSystem,
+    check_kin_transform,
+    check_pose,
+    contains_point,
+    forward_point,
+    inverse_point,
+    tcp_velocity_point,
+)
+from ..kinematics.codes import (
+    E_CSID,
+    E_KIN_CALC,
+    E_KIN_INIT,
+    E_KIN_PARAM,
+    E_KIN_TYPE,
+    E_POSE,
+    E_WORKSPACE_PARAM,
+    E_WORKSPACE_TYPE,
+)
 from ..kinematics.params import KIN_TYPE_DELTA3, WORKSPACE_TYPE_DELTA3
+from ..kinematics.ucs import CSID_MAX
+from ..robot import from_mcs, kinematics_of, vector_from_mcs
 from .admin import I_ENABLE, _EnableFB
 from .base import I_EXECUTE, O_BUSY, O_ERROR, O_ERRORID, FBDef, Var
 from .group_fb import IO_GROUP, ONESHOT_OUTPUTS, _GroupOneShot, _GroupRef
@@ -170,4 +192,129 @@ class MC_InverseKin(_GroupRef, _EnableFB):
             o["OutWorkspace"] = False
 
 
-ROBOT_CLASSES = (MC_SetKinTransform, MC_InverseKin)
+def kinematics_set(group: AxesGroup) -> bool:
+    """Kinematics registered and usable (the project's from cycle 0, MC_SetKinTransform's from the period after Done,
+    §9.1); otherwise the robot instructions give 5710."""
+    return group.kinematics is not None and group.m.cycle >= group.kin_from_cycle
+
+
+class MC_DefineCoordSystem(_GroupOneShot):
+    DEF = FBDef(
+        name="MC_DefineCoordSystem", title="Define coordinate system",
+        summary="Registers user coordinate system CSID (0–15) of a robot by its pose Tx, Ty, Tz (mm), Rx, Ry, Rz (deg) "
+                "relative to the MCS, rotated Rz → Ry → Rx (§4). Volatile.",
+        kind="execute", inouts=(IO_GROUP,),
+        inputs=(I_EXECUTE, Var("CoordTransform", "_sMC_COORD_REF", {"CSID": 0, "Pose": [0.0] * 6},
+                               "CSID (0–15) and Pose [Tx, Ty, Tz (mm), Rx (−180…180°), Ry (−90…90°), Rz (−180…180°)]",
+                               None, "§8.2")),
+        outputs=ONESHOT_OUTPUTS,
+        spec=f"{SPEC} §9.2 (seed 003 L2978–3101), §4, §11",
+    )
+
+    def execute(self, axis: Any) -> None:
+        group: AxesGroup = axis
+        if not kinematics_set(group):
+            self.fail(E_KIN_NOT_SET, group)
+            return
+        ct = self.inp["CoordTransform"]
+        csid = ct.get("CSID", 0)
+        if isinstance(csid, bool) or not isinstance(csid, int) or not 0 <= csid <= CSID_MAX:
+            self.fail(E_CSID, group)  # out of range or wrong data type (§11 570B)
+            return
+        pose = _numbers(ct.get("Pose", [0.0] * 6))
+        code, reason = (E_POSE, "Pose is not an array of numbers") if pose is None else check_pose(pose)
+        if code:
+            # 570C: source MC common, no effect on the group (§9.2 [Emulator]); ResetMCError releases Error
+            self._set_error(code, None)
+            m = group.m
+            m.log_error(code, axis=None, source=f"{group.name} / {self.label}", detail=reason)
+            return
+        assert pose is not None
+        ucs = UserCoordSystem.from_pose(pose)
+        group.coord_systems[csid] = ucs
+        group.m.log_info(None, f"{group.name}: user coordinate system {csid} defined, pose {ucs.pose()}")
+        self.done_next()
+
+
+_POSITION_REF = {"CommandPosition": [0.0] * 6, "ActualPosition": [0.0] * 6}
+_VELOCITY_REF = {"ActualVelocityTCP": 0.0, "ActualVelocity": [0.0] * 6}
+
+
+class MC_GroupMon(_GroupRef, _EnableFB):
+    DEF = FBDef(
+        name="MC_GroupMon", title="Group monitor",
+        summary="Every period while Enable is TRUE: the TCP command and feedback positions and the feedback velocity "
+                "of the robot in the MCS or a UCS (forward kinematics of the axes).",
+        kind="enable", inouts=(IO_GROUP,),
+        inputs=(I_ENABLE,
+                Var("CoordSystem", "_eMC_RBT_COORD_SYSTEM", 1, "Coordinate system: _mcRBT_MCS or _mcRBT_UCS", None,
+                    "1, 3"),
+                Var("CSID", "UINT", 0, "User coordinate system ID (CoordSystem = _mcRBT_UCS)", None, "0–15")),
+        outputs=(Var("Valid", "BOOL", False, "TRUE while Position and Velocity are valid"), O_BUSY, O_ERROR, O_ERRORID,
+                 Var("Position", "_sMC_POSITION_REF", _POSITION_REF,
+                     "TCP CommandPosition and ActualPosition [X, Y, Z, 0, 0, 0]", "mm"),
+                 Var("Velocity", "_sMC_VELOCITY_REF", _VELOCITY_REF,
+                     "TCP feedback speed ActualVelocityTCP and components ActualVelocity [Vx, Vy, Vz, 0, 0, 0]",
+                     "mm/s")),
+        spec=f"{SPEC} §9.3 (seed 003 L3102–3337), §12.5, §11",
+    )
+
+    def __init__(self, mc: Any, fb_id: int, inputs: dict[str, Any] | None = None) -> None:
+        super().__init__(mc, fb_id, inputs)
+        self.out["Position"] = {k: list(v) for k, v in _POSITION_REF.items()}
+        self.out["Velocity"] = {"ActualVelocityTCP": 0.0, "ActualVelocity": [0.0] * 6}
+
+    def enabled(self, changed: bool) -> None:
+        group: AxesGroup | None = self.resolve_axis()
+        if group is None:
+            self.fail(E_ILLEGAL_GROUP, None)
+            return
+        if not kinematics_set(group):
+            self.fail(E_KIN_NOT_SET, group)
+            return
+        if not all(a.homed for a in group.axes):
+            self.fail(E_HOME_UNDEFINED, group)
+            return
+        i = self.inp
+        if i["CoordSystem"] not in (1, 3):
+            self.fail(0x542C, group)
+            return
+        ucs = None
+        if i["CoordSystem"] == 3:
+            ucs = group.coord_systems.get(int(i["CSID"]))
+            if ucs is None:
+                self.fail(E_CSID, group)
+                return
+        kin = kinematics_of(group)
+        assert kin is not None
+        params = kin[0]
+        m = group.m
+        act_q = (float(m.act_pos[group.idx[0]]), float(m.act_pos[group.idx[1]]), float(m.act_pos[group.idx[2]]))
+        act_v = (float(m.act_vel[group.idx[0]]), float(m.act_vel[group.idx[1]]), float(m.act_vel[group.idx[2]]))
+        st_a, p_act = forward_point(params, *act_q)
+        st_v, v_act = tcp_velocity_point(params, act_q, act_v)
+        if group.enabled:
+            st_c, p_cmd = forward_point(params, *(float(m.cmd_pos[k]) for k in group.idx))
+        else:  # the command position holds while the group is disabled (§9.3)
+            st_c, p_cmd = Status.OK, None
+        if st_a != Status.OK or st_v != Status.OK or st_c != Status.OK:
+            self.fail(E_KIN_CALC, group)
+            return
+        # new structures every period (a published snapshot may still hold the previous ones)
+        held = self.out["Position"]["CommandPosition"]
+        self.out["Position"] = {
+            "CommandPosition": held if p_cmd is None else [*from_mcs(ucs, p_cmd), 0.0, 0.0, 0.0],
+            "ActualPosition": [*from_mcs(ucs, p_act), 0.0, 0.0, 0.0]}
+        v = vector_from_mcs(ucs, v_act)
+        self.out["Velocity"] = {"ActualVelocityTCP": math.sqrt(v[0] ** 2 + v[1] ** 2 + v[2] ** 2),
+                                "ActualVelocity": [*v, 0.0, 0.0, 0.0]}
+        self.out["Valid"] = True
+
+    def call(self) -> None:
+        super().call()
+        o = self.out
+        if not o["Busy"] or o["Error"]:
+            o["Valid"] = False
+
+
+ROBOT_CLASSES = (MC_SetKinTransform, MC_InverseKin, MC_DefineCoordSystem, MC_GroupMon)
