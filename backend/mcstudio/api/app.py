@@ -16,7 +16,7 @@ from fastapi.staticfiles import StaticFiles
 from .. import __version__
 from . import errors
 from .models import WsHeartbeat, WsSubscribe
-from .routers import axes, cams, controller, ethercat, events, fb, groups, health, live, project, robots
+from .routers import axes, cams, controller, ethercat, events, fb, groups, health, live, project, robots, traces
 from .state import Studio
 
 API_PREFIX = "/api/v1"
@@ -59,7 +59,7 @@ def create_app(studio: Studio, *, static_dir: Path | None = None, cors_origins: 
 
     api = APIRouter(prefix=API_PREFIX)
     for r in (health.router, controller.router, project.router, axes.router, groups.router, fb.router, events.router,
-              ethercat.router, live.router, cams.router, robots.router):
+              ethercat.router, live.router, cams.router, robots.router, traces.router):
         api.include_router(r)
     app.include_router(api)
 

@@ -12,6 +12,7 @@ from fastapi.responses import JSONResponse
 
 from ..controller.kernel import KernelError
 from ..controller.mc.fb.base import FBInputError
+from ..controller.trace import TraceError
 from ..project.io import ProjectError
 from .state import ConflictError
 
@@ -48,6 +49,13 @@ def install(app: FastAPI) -> None:
             return JSONResponse(status_code=404, content={"detail": exc.message})
         loc = ["body", *exc.field.split(".")]
         return JSONResponse(status_code=exc.status, content={"detail": [_err(loc, exc.message)]})
+
+    @app.exception_handler(TraceError)
+    async def _trace(_: Request, exc: TraceError) -> JSONResponse:
+        if exc.status == 404:
+            return JSONResponse(status_code=404, content={"detail": exc.message})
+        return JSONResponse(status_code=exc.status,
+                            content={"detail": [_err(["body", *_split_path(exc.field)], exc.message)]})
 
     @app.exception_handler(ProjectError)
     async def _project(_: Request, exc: ProjectError) -> JSONResponse:

@@ -481,3 +481,39 @@ class TraceSet:
                 finished = True
         if finished:
             self._refresh()
+
+
+def catalog(ctrl: Controller) -> dict[str, list[dict[str, Any]]]:
+    """The traceable variables of the controller (kernel thread), grouped by axes, groups, instances, slaves; each
+    variable with the unit and type a trace would record."""
+
+    def target(kind: str, tgt: str, label: str, names: list[str]) -> dict[str, Any]:
+        out = []
+        for n in names:
+            try:
+                a = compile_accessor(ctrl, TraceVariable(kind=kind, target=tgt, name=n), "v")  # type: ignore[arg-type]
+            except TraceError:
+                continue
+            out.append({"name": n, "unit": a.unit, "type": a.type, "description": ""})
+        return {"kind": kind, "target": tgt, "label": label, "variables": out}
+
+    mc, net = ctrl.mc, ctrl.network
+    axes = [target("axis", a.name, a.name, axis_members()) for a in mc.axes]
+    groups = [target("group", g.name, g.name, group_members(len(g.idx))) for g in mc.groups]
+    instances = []
+    for fid, entry in ctrl.program.items():
+        fb = entry.fb
+        axis = fb.inp.get("Axis") or fb.inp.get("AxesGroup") or ""
+        names = [o.name for o in fb.DEF.outputs if o.type in NUMERIC_TYPES or o.enum is not None]
+        instances.append(target("fb", str(fid), f"#{fid} {fb.DEF.name}" + (f" ({axis})" if axis else ""), names))
+    slaves = []
+    for s in net.slaves:
+        names = [f"{e.index:04X}:{e.subindex:02X}" for layout in (s.rx_layout, s.tx_layout) for e in layout.entries
+                 if e.index and e.field is not None]
+        t = target("pdo", str(s.node_address), f"Node {s.node_address} {s.name}", names)
+        by_key = {f"{e.index:04X}:{e.subindex:02X}": e.name for layout in (s.rx_layout, s.tx_layout)
+                  for e in layout.entries}
+        for v in t["variables"]:
+            v["description"] = by_key.get(v["name"], "")
+        slaves.append(t)
+    return {"axes": axes, "groups": groups, "instances": instances, "slaves": slaves}

@@ -725,6 +725,137 @@ export interface paths {
         patch?: never;
         trace?: never;
     };
+    "/api/v1/traces/variables": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        /** Traceable variables, grouped */
+        get: operations["trace_variables_api_v1_traces_variables_get"];
+        put?: never;
+        post?: never;
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/traces": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        /** The controller's traces */
+        get: operations["list_traces_api_v1_traces_get"];
+        put?: never;
+        /**
+         * Configure and start a trace
+         * @description The first sample is taken at the end of the next period the controller runs. An unknown axis, group, instance, slave or member is a 422 whose `loc` names the field (`variables[1].target`); more than 8 traces at once is a 409; rings beyond the memory budget are a 422 on `samples`.
+         */
+        post: operations["create_trace_api_v1_traces_post"];
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/traces/{trace_id}": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        /**
+         * State and samples of a trace
+         * @description The record (in repeat mode the last complete one, once there is one), oldest sample first. `max_points` decimates for plotting (every k-th sample, the smallest k giving at most that many); `decimation` sets k directly.
+         */
+        get: operations["get_trace_api_v1_traces__trace_id__get"];
+        put?: never;
+        post?: never;
+        /** Delete a trace and free its rings */
+        delete: operations["delete_trace_api_v1_traces__trace_id__delete"];
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/traces/{trace_id}/csv": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        /** The record as CSV (every sample) */
+        get: operations["trace_csv_api_v1_traces__trace_id__csv_get"];
+        put?: never;
+        post?: never;
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/traces/{trace_id}/stop": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        get?: never;
+        put?: never;
+        /** Stop recording (samples are kept) */
+        post: operations["stop_trace_api_v1_traces__trace_id__stop_post"];
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/traces/{trace_id}/restart": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        get?: never;
+        put?: never;
+        /** Discard the samples and start again with the same settings */
+        post: operations["restart_trace_api_v1_traces__trace_id__restart_post"];
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/project/traces": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        /** Trace settings saved in the project */
+        get: operations["get_project_traces_api_v1_project_traces_get"];
+        /**
+         * Replace the project's trace settings
+         * @description Changes the project document without restarting the controller (traces are not part of the download); the document is written by POST /project/save.
+         */
+        put: operations["put_project_traces_api_v1_project_traces_put"];
+        post?: never;
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
 }
 export type webhooks = Record<string, never>;
 export interface components {
@@ -3472,6 +3603,11 @@ export interface components {
              * @description Cam tables (cam data variables); their points are in cams/<name>.csv
              */
             cams?: components["schemas"]["CamDefinition"][];
+            /**
+             * Traces
+             * @description Saved data trace settings (docs/trace.md)
+             */
+            traces?: components["schemas"]["TraceSettings"][];
         };
         /** ProjectInfo */
         ProjectInfo: {
@@ -3965,6 +4101,271 @@ export interface components {
              * @default true
              */
             enable: boolean;
+        };
+        /**
+         * TraceCatalog
+         * @description What can be traced in the running controller, grouped as in the studio's variable list.
+         */
+        TraceCatalog: {
+            /** Axes */
+            axes: components["schemas"]["TraceTarget"][];
+            /** Groups */
+            groups: components["schemas"]["TraceTarget"][];
+            /** Instances */
+            instances: components["schemas"]["TraceTarget"][];
+            /** Slaves */
+            slaves: components["schemas"]["TraceTarget"][];
+            /** Max Traces */
+            max_traces: number;
+            /** Max Variables */
+            max_variables: number;
+            /** Max Samples */
+            max_samples: number;
+            /** Memory Budget Bytes */
+            memory_budget_bytes: number;
+        };
+        /** TraceData */
+        TraceData: {
+            /** Id */
+            id: number;
+            /** Name */
+            name: string;
+            /**
+             * State
+             * @description waiting (for the trigger, or filling the pre-trigger samples), triggered (recording the post-trigger samples), done (single record complete), running (continuous ring), stopped
+             * @enum {string}
+             */
+            state: "waiting" | "triggered" | "done" | "running" | "stopped";
+            /**
+             * Records
+             * @description Complete records so far (repeat mode)
+             */
+            records: number;
+            /**
+             * Sample Count
+             * @description Samples in the readable record
+             */
+            sample_count: number;
+            /**
+             * Start Cycle
+             * @description Cycle of the first sample (the period in which the trace was started)
+             */
+            start_cycle: number;
+            /**
+             * Trigger Cycle
+             * @description Cycle of the trigger sample of the readable record
+             */
+            trigger_cycle: number | null;
+            settings: components["schemas"]["TraceSettings"];
+            /** Period S */
+            period_s: number;
+            /**
+             * Decimation
+             * @description Every decimation-th sample of the record is returned
+             */
+            decimation: number;
+            /** Pre Trigger Samples */
+            pre_trigger_samples: number;
+            /**
+             * Trigger Index
+             * @description Index of the trigger sample in the (undecimated) record
+             */
+            trigger_index: number | null;
+            /** Trigger Time S */
+            trigger_time_s: number | null;
+            /**
+             * Cycles
+             * @description Cycle of each returned sample (sampled at the end of that period)
+             */
+            cycles: number[];
+            /**
+             * Time S
+             * @description cycle × period
+             */
+            time_s: number[];
+            /** Series */
+            series: components["schemas"]["TraceSeries"][];
+        };
+        /** TraceSeries */
+        TraceSeries: {
+            /**
+             * Label
+             * @description Variable name as shown: MC_Axis000.Cmd.Vel, MC_MoveAbsolute#3.Busy, Node1.6064:00 …
+             */
+            label: string;
+            /**
+             * Unit
+             * @description mm, mm/s, mm/s², %, bool … ('' for PDO entries: raw object values)
+             */
+            unit: string;
+            /**
+             * Type
+             * @enum {string}
+             */
+            type: "REAL" | "INT" | "BOOL";
+            /**
+             * Values
+             * @description One value per returned sample; BOOL as 0/1
+             */
+            values: number[];
+        };
+        /**
+         * TraceSettings
+         * @description A data trace's settings (saved in the project, sent to start a trace).
+         */
+        TraceSettings: {
+            /**
+             * Name
+             * @default Trace
+             */
+            name: string;
+            /** Variables */
+            variables: components["schemas"]["TraceVariable"][];
+            /**
+             * Sampling Periods
+             * @description Sample every N primary periods (1 = each)
+             * @default 1
+             */
+            sampling_periods: number;
+            /**
+             * Samples
+             * @description Samples per variable (record length)
+             * @default 100000
+             */
+            samples: number;
+            /**
+             * Mode
+             * @description single: one record; continuous: a ring of the last `samples` until stopped (no trigger); repeat: re-arm after each record, the last complete one is readable
+             * @default single
+             * @enum {string}
+             */
+            mode: "single" | "continuous" | "repeat";
+            /** @description None: record from the start */
+            trigger?: components["schemas"]["TraceTrigger"] | null;
+        };
+        /** TraceSummary */
+        TraceSummary: {
+            /** Id */
+            id: number;
+            /** Name */
+            name: string;
+            /**
+             * State
+             * @description waiting (for the trigger, or filling the pre-trigger samples), triggered (recording the post-trigger samples), done (single record complete), running (continuous ring), stopped
+             * @enum {string}
+             */
+            state: "waiting" | "triggered" | "done" | "running" | "stopped";
+            /**
+             * Records
+             * @description Complete records so far (repeat mode)
+             */
+            records: number;
+            /**
+             * Sample Count
+             * @description Samples in the readable record
+             */
+            sample_count: number;
+            /**
+             * Start Cycle
+             * @description Cycle of the first sample (the period in which the trace was started)
+             */
+            start_cycle: number;
+            /**
+             * Trigger Cycle
+             * @description Cycle of the trigger sample of the readable record
+             */
+            trigger_cycle: number | null;
+            settings: components["schemas"]["TraceSettings"];
+        };
+        /** TraceTarget */
+        TraceTarget: {
+            /**
+             * Kind
+             * @enum {string}
+             */
+            kind: "axis" | "group" | "fb" | "pdo";
+            /**
+             * Target
+             * @description Axis / group name, instance id or node address, as TraceVariable.target
+             */
+            target: string;
+            /** Label */
+            label: string;
+            /** Variables */
+            variables: components["schemas"]["TraceVariableInfo"][];
+        };
+        /**
+         * TraceTrigger
+         * @description Start condition: `rising` (value goes from below `level` to at or above it; a BOOL from FALSE to TRUE),
+         *     `falling` (from above to at or below; TRUE to FALSE), or a level condition `gt`, `lt`, `eq`, `ne` against
+         *     `level`. The trigger is armed once the pre-trigger samples are recorded, so the share is exact.
+         */
+        TraceTrigger: {
+            variable: components["schemas"]["TraceVariable"];
+            /**
+             * Condition
+             * @default rising
+             * @enum {string}
+             */
+            condition: "rising" | "falling" | "gt" | "lt" | "eq" | "ne";
+            /**
+             * Level
+             * @default 0.5
+             */
+            level: number;
+            /**
+             * Pre Trigger Percent
+             * @description Share of the samples before the trigger
+             * @default 10
+             */
+            pre_trigger_percent: number;
+        };
+        /**
+         * TraceVariable
+         * @description One traced variable.
+         *
+         *     * `axis`: `target` = axis name, `name` = a member of the axis variable (`Cmd.Pos`, `Cmd.Vel`, `Cmd.AccDec`,
+         *       `Cmd.Jerk`, `Cmd.Trq`, `Act.Pos`, `Act.Vel`, `Act.Trq`, `Status.Standstill`, `DrvStatus.ServoOn`, …);
+         *     * `group`: `target` = axes group name, `name` = `Cmd.Vel`, `Cmd.AccDec`, `CmdPos[0]` … `CmdPos[3]`, `Status.*`,
+         *       `MFaultLvl.Active`;
+         *     * `fb`: `target` = the instance id, `name` = one of its outputs of a scalar type (`Busy`, `Done`, `ErrorID` …);
+         *     * `pdo`: `target` = the slave's node address, `name` = a mapped object by index (`6064:00`, `0x6064`, `6064h`) or
+         *       by name (`Position actual value`).
+         */
+        TraceVariable: {
+            /**
+             * Kind
+             * @enum {string}
+             */
+            kind: "axis" | "group" | "fb" | "pdo";
+            /**
+             * Target
+             * @description Axis / group name, instance id or node address
+             */
+            target: string;
+            /**
+             * Name
+             * @description Member, output or PDO object
+             */
+            name: string;
+        };
+        /** TraceVariableInfo */
+        TraceVariableInfo: {
+            /** Name */
+            name: string;
+            /** Unit */
+            unit: string;
+            /**
+             * Type
+             * @enum {string}
+             */
+            type: "REAL" | "INT" | "BOOL";
+            /**
+             * Description
+             * @description PDO entries: the object's name
+             * @default
+             */
+            description: string;
         };
         /**
          * UnitConversionSettings
@@ -5893,6 +6294,332 @@ export interface operations {
                 };
                 content: {
                     "application/json": components["schemas"]["RobotsOut"];
+                };
+            };
+        };
+    };
+    trace_variables_api_v1_traces_variables_get: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        requestBody?: never;
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["TraceCatalog"];
+                };
+            };
+        };
+    };
+    list_traces_api_v1_traces_get: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        requestBody?: never;
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["TraceSummary"][];
+                };
+            };
+        };
+    };
+    create_trace_api_v1_traces_post: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        requestBody: {
+            content: {
+                "application/json": components["schemas"]["TraceSettings"];
+            };
+        };
+        responses: {
+            /** @description Successful Response */
+            201: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["TraceSummary"];
+                };
+            };
+            /** @description Too many traces */
+            409: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description Validation Error */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["HTTPValidationError"];
+                };
+            };
+        };
+    };
+    get_trace_api_v1_traces__trace_id__get: {
+        parameters: {
+            query?: {
+                /** @description At most this many samples */
+                max_points?: number | null;
+                /** @description Every k-th sample */
+                decimation?: number | null;
+            };
+            header?: never;
+            path: {
+                trace_id: number;
+            };
+            cookie?: never;
+        };
+        requestBody?: never;
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["TraceData"];
+                };
+            };
+            /** @description No such trace */
+            404: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description Validation Error */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["HTTPValidationError"];
+                };
+            };
+        };
+    };
+    delete_trace_api_v1_traces__trace_id__delete: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path: {
+                trace_id: number;
+            };
+            cookie?: never;
+        };
+        requestBody?: never;
+        responses: {
+            /** @description Successful Response */
+            204: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description No such trace */
+            404: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description Validation Error */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["HTTPValidationError"];
+                };
+            };
+        };
+    };
+    trace_csv_api_v1_traces__trace_id__csv_get: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path: {
+                trace_id: number;
+            };
+            cookie?: never;
+        };
+        requestBody?: never;
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "text/csv": unknown;
+                };
+            };
+            /** @description No such trace */
+            404: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description Validation Error */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["HTTPValidationError"];
+                };
+            };
+        };
+    };
+    stop_trace_api_v1_traces__trace_id__stop_post: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path: {
+                trace_id: number;
+            };
+            cookie?: never;
+        };
+        requestBody?: never;
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["TraceSummary"];
+                };
+            };
+            /** @description No such trace */
+            404: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description Validation Error */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["HTTPValidationError"];
+                };
+            };
+        };
+    };
+    restart_trace_api_v1_traces__trace_id__restart_post: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path: {
+                trace_id: number;
+            };
+            cookie?: never;
+        };
+        requestBody?: never;
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["TraceSummary"];
+                };
+            };
+            /** @description No such trace */
+            404: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description Validation Error */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["HTTPValidationError"];
+                };
+            };
+        };
+    };
+    get_project_traces_api_v1_project_traces_get: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        requestBody?: never;
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["TraceSettings"][];
+                };
+            };
+        };
+    };
+    put_project_traces_api_v1_project_traces_put: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        requestBody: {
+            content: {
+                "application/json": components["schemas"]["TraceSettings"][];
+            };
+        };
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["TraceSettings"][];
+                };
+            };
+            /** @description Validation Error */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["HTTPValidationError"];
                 };
             };
         };
