@@ -283,3 +283,20 @@ def test_group_sync_move_absolute_aborts_it() -> None:
     again = move(c, [0.0, 0.0, -150.0])
     c.step(1)
     assert sync.CommandAborted and again.Busy
+
+
+def test_set_kin_transform_replaces_the_startup_kinematics() -> None:
+    """D82: the project's kinematics are in force from cycle 0 (MC_MoveTimeAbsolute runs without a program);
+    MC_SetKinTransform on the disabled group replaces them at run time (θ 30°), usable from the period after Done."""
+    c, g = robot(enable=False)
+    assert g.kinematics is not None and g.kinematics.theta == 0.0 and g.kin_from_cycle == 0
+    fb = c.fb("MC_SetKinTransform", AxesGroup=GRP, Execute=True,
+              KinTransform={"KinType": 100, "KinParam": [200.0, 350.0, 50.0, 800.0], "ExpansionParam": [30.0]},
+              Workspace={"WorkspaceType": 100, "WorkspaceParam": [-50.0, 300.0, 250.0, 150.0, 150.0]})
+    step_until(c, fb, "Done")
+    assert g.kinematics.theta == 30.0
+    en = c.fb("MC_GroupEnable", AxesGroup=GRP, Execute=True)
+    step_until(c, en, "Done")
+    mv = move(c, [0.0, 0.0, -200.0])
+    step_until(c, mv, "Done", limit=1000)
+    assert tcp(c, g) == pytest.approx((0.0, 0.0, -200.0), abs=1e-9)
