@@ -28,6 +28,7 @@ def main(argv: list[str] | None = None) -> int:
     k.add_argument("--sim-seconds", type=float, default=5.0)
     k.add_argument("--period-us", type=int, default=1000)
     k.add_argument("--cam-share", type=float, default=0.25, help="share of axes following a master through a cam")
+    k.add_argument("--trace", type=int, default=8, help="variables in a continuous data trace (0: no trace)")
     cams = sub.add_parser("cams", help="MC_GenerateCamTable of a 65,535-point table; cam evaluation for many axes")
     cams.add_argument("--points", type=int, default=65535)
     kin = sub.add_parser("kinematics", help="Delta3 inverse/forward kinematics on 1e6 points")
@@ -54,7 +55,7 @@ def main(argv: list[str] | None = None) -> int:
         from . import kernel
 
         result = kernel.run(axes=args.axes, sim_seconds=args.sim_seconds, period_us=args.period_us,
-                            cam_share=args.cam_share)
+                            cam_share=args.cam_share, trace=args.trace)
     elif args.scenario == "cams":
         from . import cams as cams_bench
 

@@ -1,7 +1,9 @@
 """Kernel scaling: N servo axes on the emulated EtherCAT bus, all moving: positioning back and forth, velocity
 control, and (with `cam_share`, default ¼) periodic MC_CamIn slaves following a velocity axis through a 361-point
 cam table; the controller runs as fast as it can (fast mode), publishing snapshots at 120 Hz of wall time as the
-runner does in fast mode (checked every 8 periods)."""
+runner does in fast mode (checked every 8 periods). With `trace` (default 8) a continuous data trace records that many
+variables every period into a 100,000-sample ring (docs/trace.md): axis variables of several axes, an instance output
+and a PDO entry, as a commissioning engineer would."""
 
 from __future__ import annotations
 
@@ -44,7 +46,25 @@ def build(axes: int, period_us: int) -> Controller:
     return Controller(project, cams={"Cam": cam_table()})
 
 
-def run(*, axes: int, sim_seconds: float, period_us: int, cam_share: float = 0.25) -> dict[str, Any]:
+TRACE_MEMBERS = ("Cmd.Pos", "Cmd.Vel", "Act.Pos", "Act.Vel", "Cmd.AccDec", "Act.Trq")
+
+
+def add_trace(c: Controller, n: int, busy_fb: int | None) -> None:
+    """A continuous trace of `n` variables: axis members over the axes, then an instance's Busy and a PDO entry."""
+    from mcstudio.project.trace_models import TraceSettings, TraceVariable
+
+    axes = len(c.mc.axes)
+    extra: list[TraceVariable] = [TraceVariable(kind="pdo", target="1", name="6064:00")]
+    if busy_fb is not None:
+        extra.insert(0, TraceVariable(kind="fb", target=str(busy_fb), name="Busy"))
+    k_axis = max(0, n - len(extra))
+    variables = [TraceVariable(kind="axis", target=f"MC_Axis{k % axes:03d}", name=TRACE_MEMBERS[k % 6])
+                 for k in range(k_axis)] + extra[:n - k_axis]
+    c.traces.configure(TraceSettings(name="bench", variables=variables, samples=100_000, mode="continuous"))
+
+
+def run(*, axes: int, sim_seconds: float, period_us: int, cam_share: float = 0.25, trace: int = 8
+        ) -> dict[str, Any]:
     c = build(axes, period_us)
     n_cam = round(axes * cam_share) if axes >= 4 else 0
     cam_slaves = {i for i in range(3, axes, 4)}
@@ -65,6 +85,8 @@ def run(*, axes: int, sim_seconds: float, period_us: int, cam_share: float = 0.2
         else:
             c.fb("MC_MoveVelocity", Axis=name, Execute=True, Velocity=25.0 + i % 7, Acceleration=500.0,
                  Deceleration=500.0)
+    if trace:
+        add_trace(c, trace, moves[0].id if moves else None)
     cycles = round(sim_seconds / c.period_s)
     publish_s = PUBLISH_INTERVAL_S  # snapshots as the runner publishes them in fast mode: at 120 Hz of wall time
     publications = 0
@@ -98,4 +120,5 @@ def run(*, axes: int, sim_seconds: float, period_us: int, cam_share: float = 0.2
         "us_per_axis_period": round(wall / cycles / axes * 1e6, 3),
         "peak_mb": round(peak_mb, 1),
         "snapshots_per_s": round(publications / wall, 1),
+        "traced_variables": trace,
     }
