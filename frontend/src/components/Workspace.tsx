@@ -18,6 +18,7 @@ import {
 import { AxesTable } from "./axes/AxesTable";
 import { camTab } from "./cams/tabs";
 import { ethercatTab } from "./ethercat/tabs";
+import { groupTab } from "./group/tabs";
 import { AxisSettings } from "./settings/AxisSettings";
 import { AxisTestRun } from "./testrun/AxisTestRun";
 import { VizView } from "./viz/VizView";
@@ -137,7 +138,7 @@ export function Workspace() {
             3D
           </Tabs.Tab>
           {open.map((key) => {
-            const ec = ethercatTab(key) ?? camTab(key);
+            const ec = ethercatTab(key) ?? camTab(key) ?? groupTab(key);
             if (ec) {
               return (
                 <Tabs.Tab key={key} value={key} leftSection={ec.icon} data-testid={ec.testId}
@@ -186,7 +187,7 @@ export function Workspace() {
           <AxesTable />
         </Tabs.Panel>
         {open.map((key) => {
-          const ec = ethercatTab(key) ?? camTab(key);
+          const ec = ethercatTab(key) ?? camTab(key) ?? groupTab(key);
           if (ec) {
             return (
               <Tabs.Panel key={key} value={key} style={{ overflow: "hidden" }}>

@@ -14,6 +14,7 @@ import {
   tabsStore,
 } from "../../store/tabs";
 import { CamTreeNode } from "../cams/CamTreeNode";
+import { GroupTreeNode } from "../group/GroupTreeNode";
 import { EthercatTreeNode } from "./EthercatTreeNode";
 
 function StateBadge({ name }: { name: string }) {
@@ -141,6 +142,7 @@ export function ProjectTree() {
               />
             ))}
           </NavLink>
+          <GroupTreeNode />
           <EthercatTreeNode />
           <CamTreeNode />
           <NavLink

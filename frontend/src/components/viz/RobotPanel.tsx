@@ -3,6 +3,9 @@ import { IconAlertTriangle, IconRobot } from "@tabler/icons-react";
 import { useEffect, useState } from "react";
 import { api, unwrap } from "../../api/client";
 import type { RobotOut, RobotsOut } from "../../api/types";
+import { useGroup } from "../../store/groupCommands";
+import { GroupControls, LastGroupInstruction } from "../group/GroupControls";
+import { RobotJogPanel } from "../group/RobotJogPanel";
 
 const POLL_MS = 200;
 
@@ -128,6 +131,21 @@ function RobotCard({ robot }: { robot: RobotOut }) {
       <Text size="xs" c="dimmed">
         Rf {k.Rf} · Rm {k.Rm} · Lf {k.Lf} · Lm {k.Lm} mm · θ {k.theta}°
       </Text>
+      <RobotTestRun name={robot.group} />
+    </Stack>
+  );
+}
+
+/** The group test run of the robot next to the 3D view: state buttons, Cartesian jog, the demo sequence. */
+function RobotTestRun({ name }: { name: string }) {
+  const group = useGroup(name);
+  if (!group) return null;
+  return (
+    <Stack gap={8} pt={6} style={{ borderTop: "1px solid var(--mantine-color-gray-3)" }} data-testid="robot-testrun">
+      <Title order={6}>Test run</Title>
+      <GroupControls group={group} compact />
+      <RobotJogPanel group={group} />
+      <LastGroupInstruction group={name} />
     </Stack>
   );
 }
@@ -138,7 +156,7 @@ export function RobotPanel({ active }: { active: boolean }) {
   return (
     <Paper
       data-testid="robot-panel"
-      w={300}
+      w={330}
       radius={0}
       p="sm"
       style={{ borderLeft: "1px solid var(--mantine-color-gray-3)", flex: "none", display: "flex", minHeight: 0 }}
