@@ -14,7 +14,7 @@ def test_workpieces_appear_at_the_pitch_and_move_with_the_conveyor() -> None:
     assert src.positions(150.0) == [(-350.0, 20.0, 5.0)]
     assert src.positions(200.0) == [(-300.0, 20.0, 5.0), (-500.0, 20.0, 5.0)]
     xs = [p[0] for p in src.positions(1234.5)]
-    assert xs == pytest.approx([434.5, 234.5, 34.5, -165.5, -365.5])  # 1000 mm belt → 5 workpieces, 200 mm apart
+    assert xs == pytest.approx([334.5, 134.5, -65.5, -265.5, -465.5])  # 1000 mm belt → 5 workpieces, 200 mm apart
     assert all(-500.0 <= x <= 500.0 for x in xs)
     # a workpiece moves exactly as far as the conveyor
     assert src.workpiece(3, 1300.0)[0] - src.workpiece(3, 1234.5)[0] == pytest.approx(65.5)
