@@ -200,3 +200,166 @@ def velocity_limits(distance: float, duration: float) -> tuple[float, float]:
 
 def distance(a: Vec3, b: Vec3) -> float:
     return math.sqrt((b[0] - a[0]) ** 2 + (b[1] - a[1]) ** 2 + (b[2] - a[2]) ** 2)
+
+
+@dataclass(slots=True)
+class Rates:
+    """6703/6704 while running: the command TCP velocity and acceleration from differences of the command positions
+    (vector magnitudes, D81), checked against TrajData.MaxVelocity / MaxAcceleration (relative tolerance VEL_TOL)."""
+
+    vmax: float
+    amax: float
+    prev: Vec3
+    vel: Vec3 = (0.0, 0.0, 0.0)
+
+    def check(self, p: Vec3, T: float, enabled: bool) -> int:
+        v = ((p[0] - self.prev[0]) / T, (p[1] - self.prev[1]) / T, (p[2] - self.prev[2]) / T)
+        a = math.dist(v, self.vel) / T
+        self.prev, self.vel = p, v
+        if not enabled:
+            return 0
+        if math.hypot(*v) > self.vmax * (1.0 + VEL_TOL):
+            return E_VELOCITY_ERROR
+        if a > self.amax * (1.0 + VEL_TOL):
+            return E_ACCELERATION_ERROR
+        return 0
+
+
+@dataclass(slots=True)
+class ConveyorSync(RobotMotion):
+    """MC_SyncLinearConveyor (§9.5, the [Emulator] flat trajectory): rise by H1 in T1, catch up with the workpiece
+    from Ttrans1·T1 to te = T1 + T2 + T3·(1 − Ttrans2) on the conveyor-speed prediction, descend in T3 from T1 + T2;
+    at te the command must be within 0.1 mm per 1 ms period of the workpiece in X and Y (InSync, else 6702); from
+    then on X/Y follow the workpiece by the conveyor's feedback. Times are seconds; k = cycle − start, t = (k+1)·T
+    (the command of period k), the workpiece W = W0 + (c − c0)·u, its prediction W0 + v0·k·T·u (same time base)."""
+
+    p0: Vec3
+    w0: Vec3
+    u: Vec3  # conveyor direction in the MCS (X of the chosen CS, horizontal)
+    conveyor: int  # row of the conveyor axis
+    c0: float
+    v0: float
+    T1: float
+    T2: float
+    T3: float
+    tr1: float  # Ttrans1 / 100
+    tr2: float
+    H1: float
+    start_cycle: int
+    params: Delta3Params
+    workspace: Delta3Workspace | None
+    rates: Rates
+    tolerance: float  # mm: 0.1 mm per 1 ms period
+    period: float
+    in_sync: bool = False
+    phase: int = 1
+    remain_ms: int = 0
+    bounds: tuple[float, float, float, float, float] = (0.0, 0.0, 0.0, 0.0, 0.0)
+
+    def __post_init__(self) -> None:
+        T1, T2, T3, T = self.T1, self.T2, self.T3, self.period
+        b1 = self.tr1 * T1 if self.tr1 < 1.0 else T1
+        b2 = T1 if self.tr1 < 1.0 else T1 + T  # phases 2 and 4 last at least one period (§9.5 table)
+        b4 = T1 + T2 + T3 * (1.0 - self.tr2) if self.tr2 < 1.0 else T1 + T2 + T
+        self.bounds = (b1, b2, T1 + T2, b4, T1 + T2 + T3)
+
+    def phase_at(self, t: float) -> int:
+        for n, b in enumerate(self.bounds, start=1):
+            if t <= b + 1e-12:
+                return n
+        return 6
+
+    def workpiece(self, group: AxesGroup) -> Vec3:
+        d = float(group.m.act_pos[self.conveyor]) - self.c0
+        w, u = self.w0, self.u
+        return (w[0] + d * u[0], w[1] + d * u[1], w[2])
+
+    def step(self, group: AxesGroup, job: Job, cycle: int) -> None:
+        m = group.m
+        if not m.pd_ok[self.conveyor]:
+            fail_running(group, job, E_CONVEYOR_READ, "conveyor axis without process-data communication")
+            return
+        if job.status == JobStatus.STARTING:
+            job.status = JobStatus.ACTIVE
+        T = self.period
+        k = cycle - self.start_cycle
+        t = (k + 1) * T
+        b1, _, td, te, tend = self.bounds
+        p0, w0 = self.p0, self.w0
+        h1 = self.H1 if self.T1 > 0 else 0.0
+        z = p0[2] + (h1 * cubic(t / self.T1) if self.T1 > 0 else 0.0) + (w0[2] - p0[2] - h1) * cubic((t - td) / self.T3)
+        phase = self.phase_at(t)
+        if phase <= 4:
+            d = self.v0 * k * T
+            wx, wy = w0[0] + d * self.u[0], w0[1] + d * self.u[1]
+            s = cubic((t - b1) / (te - b1)) if te > b1 else 1.0
+            p = (p0[0] + s * (wx - p0[0]), p0[1] + s * (wy - p0[1]), z)
+        else:
+            w = self.workpiece(group)
+            if not self.in_sync:
+                d = self.v0 * k * T
+                plan = (w0[0] + d * self.u[0], w0[1] + d * self.u[1])
+                dev = max(abs(plan[0] - w[0]), abs(plan[1] - w[1]))
+                if dev > self.tolerance + 1e-9:
+                    fail_running(group, job, E_SYNC_DEVIATION,
+                                 f"X/Y deviation {dev:.6g} mm from the workpiece > {self.tolerance:g} mm")
+                    return
+                self.in_sync = True
+                job.in_velocity = True  # InSync
+            p = (w[0], w[1], z)
+        # 6703/6704 only where the manual checks them: phases 1, 5, 6, or 2–4 with the conveyor stopped (§9.5)
+        code = self.rates.check(p, T, phase in (1, 5, 6) or self.v0 == 0.0)
+        if code:
+            fail_running(group, job, code, f"phase {phase}")
+            return
+        if not drive(group, job, p, self.params, self.workspace):
+            return
+        self.phase = phase
+        self.remain_ms = max(0, round((tend - t) * 1000.0))
+        if k > 0:
+            # InSync and TrajStatus are pushed to the instance in the period they change, like InVelocity (in the
+            # Execute period the instance still shows Busy only: Active comes at its next call)
+            m.job_changed(job)
+
+
+@dataclass(slots=True)
+class SyncOutMove(RobotMotion):
+    """MC_SyncOut (§9.6 [Emulator]): from the present command, X/Y leave at the conveyor velocity v_c·u and stop in
+    T4 with v(τ) = v_c·(1 − 3τ² + 2τ³) (travel v_c·T4/2), Z rises by H4·(3τ² − 2τ³); Done in the period after T4.
+    T4 = 0 or _mcRBT_ImmediateStop: no further command (the TCP stops at once), Done in the next period."""
+
+    p0: Vec3
+    vel: Vec3  # conveyor velocity vector in the MCS at the start
+    T4: float
+    H4: float
+    start_cycle: int
+    params: Delta3Params
+    workspace: Delta3Workspace | None
+    rates: Rates | None
+    end_cycle: int = -1
+
+    def step(self, group: AxesGroup, job: Job, cycle: int) -> None:
+        if job.status == JobStatus.STARTING:
+            job.status = JobStatus.ACTIVE
+        if self.end_cycle >= 0 or self.T4 <= 0.0:
+            if self.end_cycle < 0:
+                self.end_cycle = cycle  # immediate stop: nothing more is output
+            elif cycle > self.end_cycle:
+                finish(group, job)
+            return
+        T = group.m.period_s
+        t = (cycle - self.start_cycle + 1) * T
+        ended = t >= self.T4 * (1.0 - 1e-12)
+        tau = 1.0 if ended else t / self.T4
+        f = self.T4 * (tau - tau**3 + 0.5 * tau**4)
+        p0, v = self.p0, self.vel
+        p = (p0[0] + v[0] * f, p0[1] + v[1] * f, p0[2] + v[2] * f + self.H4 * cubic(tau))
+        if self.rates is not None:
+            code = self.rates.check(p, T, True)
+            if code:
+                fail_running(group, job, code)
+                return
+        if not drive(group, job, p, self.params, self.workspace):
+            return
+        if ended:
+            self.end_cycle = cycle

@@ -14,13 +14,19 @@ import math
 from typing import Any
 
 from .. import errors as E
+from ..enums import _eMC_UNITS
 from ..group import AxesGroup
+from ..jobs import JobKind, JobStatus
 from ..kinematics import Status, UserCoordSystem, contains_point, forward_point, inverse_point
-from ..kinematics.codes import E_CSID, E_CURRENT_OUTSIDE, E_KIN_CALC, E_TARGET_OUTSIDE
+from ..kinematics.codes import E_CSID, E_CURRENT_OUTSIDE, E_INIT_WORKPIECE_OUTSIDE, E_KIN_CALC, E_TARGET_OUTSIDE
 from ..robot import (
     E_ACCELERATION_ERROR,
+    E_CONVEYOR_READ,
     E_VELOCITY_ERROR,
     VEL_TOL,
+    ConveyorSync,
+    Rates,
+    SyncOutMove,
     TimeMove,
     Vec3,
     distance,
@@ -191,4 +197,223 @@ class MC_MoveTimeAbsolute(_RobotMotionFB):
         self.job = job
 
 
-ROBOT_MOTION_CLASSES = (MC_MoveTimeAbsolute,)
+E_CONVEYOR_AXIS = 0x571A
+E_TRANSITION_RANGE = 0x5716
+E_DISTANCE_RANGE = 0x5717
+E_SYNC_OUT = 0x571C
+
+
+def _uints(value: Any) -> list[int] | None:
+    if not isinstance(value, list | tuple) or len(value) > 8 or any(
+            isinstance(v, bool) or not isinstance(v, int) or not 0 <= v <= 65535 for v in value):
+        return None
+    return [int(v) for v in value] + [0] * (8 - len(value))
+
+
+def _reals(value: Any) -> list[float] | None:
+    if not isinstance(value, list | tuple) or len(value) > 8 or any(number(v) is None for v in value):
+        return None
+    return [float(v) for v in value] + [0.0] * (8 - len(value))
+
+
+def _thresholds(traj: dict[str, Any]) -> int:
+    v = max_velocity(traj)
+    if v is None or not v > 0:
+        return E_MAX_VEL_VALUE
+    a = number(traj.get("MaxAcceleration", 0.0))
+    if a is None or not a > 0:
+        return E_MAX_ACC_VALUE
+    return 0
+
+
+class MC_SyncLinearConveyor(_RobotMotionFB):
+    DEF = FBDef(
+        name="MC_SyncLinearConveyor", title="Start conveyor synchronization",
+        summary="Catches up with a workpiece on a conveyor (flat trajectory: rise H1 in T1, catch-up, descent in T3) "
+                "and then follows it with the conveyor axis's feedback; InSync when caught up. No Done: end it with "
+                "MC_SyncOut.",
+        kind="execute",
+        inouts=(IO_GROUP, Var("ConveyorAxis", "_sAXIS_REF", None,
+                              "Conveyor axis (rotary mode, unit mm, not in a group)")),
+        inputs=(I_EXECUTE,
+                Var("InitWorkpiecePosition", "ARRAY[0..5] OF LREAL", [0.0] * 6,
+                    "Workpiece position at the start [X, Y, Z, 0, 0, 0] in the chosen CS", "mm", "any"),
+                Var("TrajData", "_sMC_SYNC_TRAJ_REF",
+                    {"SyncTrajType": 0, "TrajTime": [0, 0, 0], "TrajTransition": [50, 50], "TrajDistance": [0.0],
+                     "MaxVelocity": 0.0, "MaxAcceleration": 0.0},
+                    "SyncTrajType (0 _mcFlatTraj), TrajTime [T1 ≥ 0, T2 > 0, T3 > 0] ms, TrajTransition [Ttrans1, "
+                    "Ttrans2] 50–100 %, TrajDistance [H1] mm, MaxVelocity mm/s, MaxAcceleration mm/s²", None, "§8.2"),
+                I_RBT_COORD, I_CSID, I_RBT_BUFFER, I_RBT_TRANSITION, I_TRANSITION_PARAM),
+        outputs=(Var("InSync", "BOOL", False, "TRUE once the TCP has caught up with the workpiece"),
+                 *MOTION_OUTPUTS[1:],
+                 Var("TrajStatus", "_sMC_SYNC_TRAJ_STATUS", {"RemainTime": 0, "Phase": 0},
+                     "RemainTime (ms) of T1 + T2 + T3 and Phase 0–6")),
+        spec=f"{SPEC} §9.5 (seed 003 L3637–4394), §10, §11",
+    )
+
+    def input_error(self) -> int:
+        code = super().input_error()
+        if code:
+            return code
+        traj = self.inp["TrajData"]
+        if traj.get("SyncTrajType", 0) != 0:
+            return E_TRAJ_TYPE
+        times = _uints(traj.get("TrajTime", []))
+        if times is None or not (times[1] > 0 and times[2] > 0) or any(times[3:]):
+            return E_TRAJ_TIME
+        tr = _uints(traj.get("TrajTransition", [50, 50]))
+        if tr is None or not (50 <= tr[0] <= 100 and 50 <= tr[1] <= 100) or any(tr[2:]):
+            return E_TRANSITION_RANGE
+        dist = _reals(traj.get("TrajDistance", [0.0]))
+        if dist is None or any(dist[1:]):
+            return E_DISTANCE_RANGE
+        return _thresholds(traj)
+
+    def sync_job(self) -> None:
+        job = self.job
+        motion = job.info.get("robot") if job is not None else None
+        super().sync_job()
+        o = self.out
+        o["InSync"] = self.job is not None and job is not None and job.in_velocity
+        if self.job is not None and isinstance(motion, ConveyorSync) and job is not None and \
+                job.status == JobStatus.ACTIVE:
+            o["TrajStatus"] = {"RemainTime": motion.remain_ms, "Phase": motion.phase}
+        elif self.job is None:
+            o["TrajStatus"] = {"RemainTime": 0, "Phase": 0}
+
+    def execute(self, axis: Any) -> None:
+        group: AxesGroup = axis
+        code: int | str = self.input_error() or self.condition_error(group)
+        if code == "abort":
+            self._finish("CommandAborted")
+            return
+        if code:
+            self.fail(int(code), group)
+            return
+        m = group.m
+        conv = m.by_name.get(self.inp.get("ConveyorAxis") or "")
+        if conv is None or not conv.used or conv.group is not None or any(
+                conv.name in g.config.axes for g in m.groups) or \
+                conv.params.UnitConversion.UnitDisplay != _eMC_UNITS._mcMm:
+            self.fail(E_CONVEYOR_AXIS, group)
+            return
+        if not m.pd_ok[conv.i]:
+            self.fail(E_CONVEYOR_READ, group)
+            return
+        kin = kinematics_of(group)
+        assert kin is not None
+        params, ws = kin
+        check = ws if group.workspace_check else None
+        code, ucs = self.ucs(group)
+        if not code:
+            code, p0 = self.current_tcp(group)
+        if code:
+            self.fail(int(code), group)
+            return
+        planar = None if ucs is None else ucs.planar()  # Rx, Ry ignored (§9.5 [Emulator])
+        pos = self.inp["InitWorkpiecePosition"]
+        w0 = to_mcs(planar, (float(pos[0]), float(pos[1]), float(pos[2])))
+        if check is not None and not contains_point(check, *p0):
+            self.fail(E_CURRENT_OUTSIDE, group)
+            return
+        if check is not None and not contains_point(check, *w0):
+            self.fail(E_INIT_WORKPIECE_OUTSIDE, group)
+            return
+        st, _ = inverse_point(params, *w0)
+        if st != Status.OK:
+            self.fail(E_KIN_CALC, group)
+            return
+        traj = self.inp["TrajData"]
+        times = _uints(traj.get("TrajTime", []))
+        tr = _uints(traj.get("TrajTransition", [50, 50]))
+        dist = _reals(traj.get("TrajDistance", [0.0]))
+        assert times is not None and tr is not None and dist is not None
+        rz = 0.0 if planar is None else math.radians(planar.Rz)
+        T = m.period_s
+        motion = ConveyorSync(
+            p0=p0, w0=w0, u=(math.cos(rz), math.sin(rz), 0.0), conveyor=conv.i, c0=float(m.act_pos[conv.i]),
+            v0=float(m.act_vel[conv.i]), T1=times[0] / 1000.0, T2=times[1] / 1000.0, T3=times[2] / 1000.0,
+            tr1=tr[0] / 100.0, tr2=tr[1] / 100.0, H1=dist[0], start_cycle=m.cycle, params=params, workspace=check,
+            rates=Rates(vmax=max_velocity(traj) or 0.0, amax=float(traj["MaxAcceleration"]), prev=p0),
+            tolerance=0.1 * T / 0.001, period=T)
+        job = new_job(self)
+        start(group, job, motion)
+        self.job = job
+
+
+class MC_SyncOut(_RobotMotionFB):
+    DEF = FBDef(
+        name="MC_SyncOut", title="End conveyor synchronization",
+        summary="Ends MC_SyncLinearConveyor: _mcSyncStop (only when synchronized) leaves the workpiece velocity-"
+                "continuously, decelerating in T4 and rising H4; _mcRBT_ImmediateStop stops the TCP at once.",
+        kind="execute", inouts=(IO_GROUP,),
+        inputs=(I_EXECUTE,
+                Var("TrajData", "_sMC_SYNCOUT_TRAJ_REF",
+                    {"SyncStopType": 0, "TrajTime": [0], "TrajTransition": [0], "TrajDistance": [0.0],
+                     "MaxVelocity": 0.0, "MaxAcceleration": 0.0},
+                    "SyncStopType (0 _mcSyncStop, 1 _mcRBT_ImmediateStop), TrajTime [T4] ms, TrajDistance [H4 ≥ 0] "
+                    "mm, MaxVelocity mm/s, MaxAcceleration mm/s²", None, "§8.2"),
+                I_RBT_BUFFER),
+        outputs=MOTION_OUTPUTS,
+        spec=f"{SPEC} §9.6 (seed 003 L4395–4703), §10, §11",
+    )
+
+    def input_error(self) -> int:
+        code = super().input_error()
+        if code:
+            return code
+        traj = self.inp["TrajData"]
+        if traj.get("SyncStopType", 0) not in (0, 1):
+            return E_TRAJ_TYPE
+        times = _uints(traj.get("TrajTime", [0]))
+        if times is None or any(times[1:]):
+            return E_TRAJ_TIME
+        dist = _reals(traj.get("TrajDistance", [0.0]))
+        if dist is None or dist[0] < 0 or any(dist[1:]):
+            return E_DISTANCE_RANGE
+        return _thresholds(traj)
+
+    def execute(self, axis: Any) -> None:
+        group: AxesGroup = axis
+        code: int | str = self.input_error() or self.condition_error(group)
+        if code == "abort":
+            self._finish("CommandAborted")
+            return
+        if code:
+            self.fail(int(code), group)
+            return
+        traj = self.inp["TrajData"]
+        immediate = traj.get("SyncStopType", 0) == 1
+        cur = group.current
+        conveyor = cur.info.get("robot") if cur is not None and cur.kind == JobKind.GROUP_ROBOT else None
+        if not isinstance(conveyor, ConveyorSync) or (not immediate and conveyor.phase != 6):
+            self.fail(E_SYNC_OUT, group)  # §10.1 "Error" cells and §9.6 (D84)
+            return
+        kin = kinematics_of(group)
+        assert kin is not None
+        params, ws = kin
+        check = ws if group.workspace_check else None
+        code, p0 = self.current_tcp(group)
+        if code:
+            self.fail(code, group)
+            return
+        if check is not None and not contains_point(check, *p0):
+            self.fail(E_CURRENT_OUTSIDE, group)
+            return
+        m = group.m
+        times = _uints(traj.get("TrajTime", [0]))
+        dist = _reals(traj.get("TrajDistance", [0.0]))
+        assert times is not None and dist is not None
+        vc = float(m.act_vel[conveyor.conveyor])
+        u = conveyor.u
+        T4 = 0.0 if immediate else times[0] / 1000.0
+        rates = None if T4 <= 0 else Rates(vmax=max_velocity(traj) or 0.0, amax=float(traj["MaxAcceleration"]),
+                                            prev=conveyor.rates.prev, vel=conveyor.rates.vel)
+        motion = SyncOutMove(p0=p0, vel=(vc * u[0], vc * u[1], 0.0), T4=T4, H4=dist[0], start_cycle=m.cycle,
+                             params=params, workspace=check, rates=rates)
+        job = new_job(self)
+        start(group, job, motion)
+        self.job = job
+
+
+ROBOT_MOTION_CLASSES = (MC_MoveTimeAbsolute, MC_SyncLinearConveyor, MC_SyncOut)
