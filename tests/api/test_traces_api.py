@@ -33,8 +33,12 @@ def test_trace_of_a_move_through_rest(client: TestClient, project_dir: Path) -> 
     plateau is at Velocity; decimated reads and the CSV agree with the full record."""
     power_on(client)
     tr = post(client, "/traces", trace_body(), 201)
-    assert tr["state"] == "waiting" and tr["id"] == 1
-    post(client, "/controller/step", {"cycles": 600})
+    assert tr["state"] == "waiting" and tr["id"] == 1 and tr["armed"] is False
+    post(client, "/controller/step", {"cycles": 499})
+    assert client.get(f"{API}/traces/1").json()["armed"] is False, "499 of the 500 pre-trigger samples"
+    post(client, "/controller/step", {"cycles": 1})
+    assert client.get(f"{API}/traces/1").json()["armed"] is True
+    post(client, "/controller/step", {"cycles": 100})
     mv = post(client, "/fb", {"type": "MC_MoveAbsolute", "inputs": {
         "Axis": "MC_Axis000", "Execute": True, "Position": 100, "Velocity": 50, "Acceleration": 500,
         "Deceleration": 500, "Jerk": 0}}, 201)

@@ -21,6 +21,8 @@ class TraceSummary(_Model):
     state: TraceState = Field(description="waiting (for the trigger, or filling the pre-trigger samples), triggered "
                               "(recording the post-trigger samples), done (single record complete), running "
                               "(continuous ring), stopped")
+    armed: bool = Field(description="The trigger is armed: the pre-trigger samples of the record being filled are "
+                        "in (a trigger before that is not taken, so the pre-trigger share is exact)")
     records: int = Field(description="Complete records so far (repeat mode)")
     sample_count: int = Field(description="Samples in the readable record")
     start_cycle: int = Field(description="Cycle of the first sample (the period in which the trace was started)")

@@ -409,6 +409,7 @@ class Trace:
         trigger_cycle = int(cyc[(w - n + trigger_index) % n_ring]) if trigger_index is not None else None
         return {
             "id": self.id, "name": self.settings.name, "state": self.state, "records": self.records,
+            "armed": self.state != "waiting" or self.count >= self.pre,
             "sample_count": n, "decimation": decimation, "pre_trigger_samples": self.pre,
             "trigger_index": trigger_index, "trigger_cycle": trigger_cycle,
             "trigger_time_s": trigger_cycle * self.period_s if trigger_cycle is not None else None,

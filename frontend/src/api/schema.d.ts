@@ -4137,6 +4137,11 @@ export interface components {
              */
             state: "waiting" | "triggered" | "done" | "running" | "stopped";
             /**
+             * Armed
+             * @description The trigger is armed: the pre-trigger samples of the record being filled are in (a trigger before that is not taken, so the pre-trigger share is exact)
+             */
+            armed: boolean;
+            /**
              * Records
              * @description Complete records so far (repeat mode)
              */
@@ -4255,6 +4260,11 @@ export interface components {
              * @enum {string}
              */
             state: "waiting" | "triggered" | "done" | "running" | "stopped";
+            /**
+             * Armed
+             * @description The trigger is armed: the pre-trigger samples of the record being filled are in (a trigger before that is not taken, so the pre-trigger share is exact)
+             */
+            armed: boolean;
             /**
              * Records
              * @description Complete records so far (repeat mode)

@@ -21,6 +21,7 @@ import { ethercatTab } from "./ethercat/tabs";
 import { groupTab } from "./group/tabs";
 import { AxisSettings } from "./settings/AxisSettings";
 import { AxisTestRun } from "./testrun/AxisTestRun";
+import { traceTab } from "./trace/tabs";
 import { VizView } from "./viz/VizView";
 import { OfflineBanner } from "./OfflineBanner";
 
@@ -138,7 +139,7 @@ export function Workspace() {
             3D
           </Tabs.Tab>
           {open.map((key) => {
-            const ec = ethercatTab(key) ?? camTab(key) ?? groupTab(key);
+            const ec = ethercatTab(key) ?? camTab(key) ?? groupTab(key) ?? traceTab(key);
             if (ec) {
               return (
                 <Tabs.Tab key={key} value={key} leftSection={ec.icon} data-testid={ec.testId}
@@ -187,7 +188,7 @@ export function Workspace() {
           <AxesTable />
         </Tabs.Panel>
         {open.map((key) => {
-          const ec = ethercatTab(key) ?? camTab(key) ?? groupTab(key);
+          const ec = ethercatTab(key) ?? camTab(key) ?? groupTab(key) ?? traceTab(key);
           if (ec) {
             return (
               <Tabs.Panel key={key} value={key} style={{ overflow: "hidden" }}>

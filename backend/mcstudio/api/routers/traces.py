@@ -27,7 +27,7 @@ NOT_FOUND = {404: {"description": "No such trace"}}
 
 def _summary(t: Trace) -> TraceSummary:
     d = t.read(decimation=max(1, t.samples))  # one row at most: the record's counters without its samples
-    return TraceSummary(id=t.id, name=t.settings.name, state=d["state"], records=d["records"],
+    return TraceSummary(id=t.id, name=t.settings.name, state=d["state"], armed=d["armed"], records=d["records"],
                         sample_count=d["sample_count"], start_cycle=d["start_cycle"],
                         trigger_cycle=d["trigger_cycle"], settings=t.settings)
 
@@ -69,7 +69,8 @@ def get_trace(trace_id: int, studio: Studio = Depends(get_studio),
 
     d, settings = studio.runner.call(read)
     return TraceData(
-        id=d["id"], name=d["name"], state=d["state"], records=d["records"], sample_count=d["sample_count"],
+        id=d["id"], name=d["name"], state=d["state"], armed=d["armed"], records=d["records"],
+        sample_count=d["sample_count"],
         start_cycle=d["start_cycle"], trigger_cycle=d["trigger_cycle"], settings=settings, period_s=d["period_s"],
         decimation=d["decimation"], pre_trigger_samples=d["pre_trigger_samples"], trigger_index=d["trigger_index"],
         trigger_time_s=d["trigger_time_s"], cycles=d["cycles"].tolist(), time_s=d["time_s"].tolist(),

@@ -1,5 +1,5 @@
 import { ActionIcon, Badge, Box, Loader, NavLink, ScrollArea, Text, Tooltip } from "@mantine/core";
-import { IconAxisX, IconBox, IconCpu, IconFolder, IconSettings, IconTable } from "@tabler/icons-react";
+import { IconAxisX, IconBox, IconCpu, IconFolder, IconSettings, IconTable, IconTimeline } from "@tabler/icons-react";
 import type { AxisSummary } from "../../api/types";
 import { useAxisList, useAxisVars, useLive } from "../../hooks/useLive";
 import { axisState, axisTypeLabel, stateColor } from "../../lib/format";
@@ -15,6 +15,7 @@ import {
 } from "../../store/tabs";
 import { CamTreeNode } from "../cams/CamTreeNode";
 import { GroupTreeNode } from "../group/GroupTreeNode";
+import { TAB_TRACE, openTraceTab } from "../trace/tabs";
 import { EthercatTreeNode } from "./EthercatTreeNode";
 
 function StateBadge({ name }: { name: string }) {
@@ -145,6 +146,14 @@ export function ProjectTree() {
           <GroupTreeNode />
           <EthercatTreeNode />
           <CamTreeNode />
+          <NavLink
+            label={<Text size="xs" fw={600}>Data trace</Text>}
+            leftSection={<IconTimeline size={15} />}
+            active={active === TAB_TRACE}
+            onClick={openTraceTab}
+            py={3}
+            data-testid="nav-trace"
+          />
           <NavLink
             label={<Text size="xs" fw={600}>3D view</Text>}
             leftSection={<IconBox size={15} />}
