@@ -5,7 +5,7 @@
  * - One-shot group instructions (MC_GroupEnable/Disable/Reset/Stop/ImmediateStop, MC_MoveLinear, MC_MoveCircular2D)
  *   are new instances with Execute TRUE, removed once they end (MC_GroupStop: Execute first set FALSE, the group stays
  *   Stopping while it is TRUE); an instance that ended with Error is kept so its ErrorID stays visible.
- * - Cartesian jog of a robot: one MC_RobotJog instance per group (MC Studio extension) with a 0.5 s dead-man lease,
+ * - Cartesian jog of a robot: one MC_RobotJog instance per group (MC Studio extension) with a 1.5 s dead-man lease,
  *   renewed by WebSocket heartbeats while a jog button is held.
  * - The pick-and-place demo: MC_RobotJog in Mode 1 (go to) with the lease renewed while the sequence runs, the
  *   conveyor on MC_MoveVelocity; stopping drops the enable (the robot decelerates) and stops the conveyor.
@@ -231,7 +231,12 @@ export const immediateStopGroup = (g: string) => issueGroup(g, "MC_GroupImmediat
 
 // ------------------------------------------------------------------ Cartesian jog (MC_RobotJog, dead-man lease)
 
-export const ROBOT_JOG_LEASE_S = 0.5;
+/**
+ * 1.5 s rather than the axis jog's 0.5 s: next to the 3D view a software-rendered WebGL frame can hold the page's
+ * main thread for several 100 ms (measured in headless Chromium: 100 ms timers firing every ~0.7 s), and a lease
+ * shorter than that gap would stop the robot while the button is still held.
+ */
+export const ROBOT_JOG_LEASE_S = 1.5;
 const HEARTBEAT_MS = 100;
 
 export interface JogSettings {

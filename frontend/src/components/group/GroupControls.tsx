@@ -1,6 +1,7 @@
 import { Badge, Button, Group, Stack, Text, Tooltip } from "@mantine/core";
-import { IconHandStop, IconPlayerStop, IconPower, IconRefresh } from "@tabler/icons-react";
+import { IconHandStop, IconHome, IconPlayerStop, IconPower, IconRefresh } from "@tabler/icons-react";
 import { useErrorInfo, useLive } from "../../hooks/useLive";
+import { issue } from "../../store/commands";
 import {
   type GroupInfo,
   disableGroup,
@@ -38,6 +39,7 @@ export function ErrorCode({ code, testId }: { code: string; testId?: string }) {
 /** State of the group, its composition axes' servo, and the state buttons (all through /api/v1/fb). */
 export function GroupControls({ group, compact = false }: { group: GroupInfo; compact?: boolean }) {
   const on = useLive((s) => group.axes.filter((a) => s.axes[a]?.Status?.Disabled === false).length);
+  const unhomed = useLive((s) => group.axes.filter((a) => s.axes[a]?.Details?.Homed === false).length);
   const allOn = on === group.axes.length;
   const anyOn = on > 0;
   const enabled = group.state !== "Disabled";
@@ -67,6 +69,16 @@ export function GroupControls({ group, compact = false }: { group: GroupInfo; co
             {anyOn ? "Servo OFF" : "Servo ON"}
           </Button>
         </Tooltip>
+        {unhomed > 0 && (
+          <Tooltip label={`MC_Home of ${group.axes.join(", ")} (group disabled, servo ON): group motion needs a defined home`}
+            openDelay={400} multiline w={260}>
+            <Button size={size} variant="light" color="yellow" leftSection={<IconHome size={13} />}
+              disabled={!allOn || enabled} data-testid={`group-home-${group.name}`}
+              onClick={() => group.axes.forEach((a) => void issue(a, "MC_Home", {}))}>
+              Home axes
+            </Button>
+          </Tooltip>
+        )}
         <Tooltip label={enabled ? "MC_GroupDisable" : "MC_GroupEnable"} openDelay={400}>
           <Button size={size} variant="default" data-testid={`group-enable-${group.name}`}
             onClick={() => void (enabled ? disableGroup(group.name) : enableGroup(group.name))}>
