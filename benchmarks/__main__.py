@@ -33,6 +33,10 @@ def main(argv: list[str] | None = None) -> int:
     cams.add_argument("--points", type=int, default=65535)
     kin = sub.add_parser("kinematics", help="Delta3 inverse/forward kinematics on 1e6 points")
     kin.add_argument("--points", type=int, default=1_000_000)
+    rob = sub.add_parser("robot", help="Delta3 + conveyor-tracking cells (pick cycles) next to plain moving axes")
+    rob.add_argument("--cells", type=int, default=4)
+    rob.add_argument("--axes", type=int, default=0, help="plain moving servo axes besides the cells")
+    rob.add_argument("--sim-seconds", type=float, default=5.0)
     viz = sub.add_parser("viz", help="3D view of the demo robot: frame cost, and the realtime demo with the view on")
     viz.add_argument("--frames", type=int, default=2000)
     viz.add_argument("--seconds", type=float, default=10.0)
@@ -64,6 +68,10 @@ def main(argv: list[str] | None = None) -> int:
         from . import kinematics
 
         result = kinematics.run(points=args.points)
+    elif args.scenario == "robot":
+        from . import robot
+
+        result = robot.run(cells=args.cells, axes=args.axes, sim_seconds=args.sim_seconds)
     elif args.scenario == "viz":
         from . import viz as viz_bench
 

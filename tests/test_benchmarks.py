@@ -58,3 +58,11 @@ def test_cam_and_kinematics_sub_commands(scenario: list[str]) -> None:
     out = subprocess.run([sys.executable, "-m", "benchmarks", *scenario], cwd=ROOT, capture_output=True, text=True,
                          check=True)
     assert set(json.loads(out.stdout.strip().splitlines()[-1])) >= KEYS
+
+
+def test_robot_scenario_runs_pick_cycles() -> None:
+    """One Delta3 + conveyor cell: the pick cycle (track, sync out, back) runs without instruction errors."""
+    from benchmarks import robot
+
+    r = robot.run(cells=1, axes=2, sim_seconds=2.5)
+    assert set(r) >= KEYS and r["axes"] == 6 and r["instruction_errors"] == 0 and r["picks"] >= 1
