@@ -169,3 +169,23 @@ def test_group_stop_aborts_the_jog() -> None:
     jog.Enable = False
     c.step(3)
     assert g.state == GroupState.Standby and not jog.CommandAborted
+
+
+def test_jog_in_a_ucs_follows_its_axes() -> None:
+    """CoordSystem 3 (UCS): with MC_DefineCoordSystem CSID 2 turned by Rz = 90° and moved to (0, 0, −300), +X of
+    the UCS is +Y of the MCS; CommandPosition is in the UCS. CSID 5 (not defined) → 570B."""
+    c = _robot_at()
+    d = c.fb("MC_DefineCoordSystem", AxesGroup=GRP, Execute=True,
+             CoordTransform={"CSID": 2, "Pose": [0.0, 0.0, -300.0, 0.0, 0.0, 90.0]})
+    step_until(c, d, "Done")
+    p0 = _tcp(c)
+    jog = _jog(c, Direction=[1.0, 0.0, 0.0], CoordSystem=3, CSID=2, Enable=True)
+    c.step(200)
+    p = _tcp(c)
+    assert p[1] > p0[1] + 5.0 and abs(p[0] - p0[0]) < 1e-6 and abs(p[2] - p0[2]) < 1e-6
+    assert list(jog.CommandPosition) == pytest.approx([p[1], -p[0], p[2] + 300.0], abs=1e-6)
+    jog.Enable = False
+    step_until(c, jog, "Busy", False, limit=500)
+    bad = _jog(c, CoordSystem=3, CSID=5, Enable=True)
+    c.step(1)
+    assert bad.Error and bad.out["ErrorID"] == 0x570B
