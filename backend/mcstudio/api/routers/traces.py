@@ -1,9 +1,9 @@
 """Data traces (api.md "EtherCAT, ESI, faults, events, trace"): configure + start, read, export as CSV, stop, restart,
 delete; the catalog of traceable variables; trace settings saved in the project.
 
-Everything that touches a trace runs in the kernel thread (`Runner.call`) between two periods: reading copies the
-requested samples there (a decimated read copies only the returned rows), and the JSON/CSV is built afterwards in the
-request's thread.
+Everything that touches a trace runs in the kernel thread (`Runner.call`) between two periods: reading a recording
+trace copies the requested samples there (a decimated read copies only the returned rows); a finished one is read in
+the request's thread. The JSON/CSV is built afterwards in the request's thread.
 """
 
 from __future__ import annotations
@@ -30,6 +30,18 @@ def _summary(t: Trace) -> TraceSummary:
     return TraceSummary(id=t.id, name=t.settings.name, state=d["state"], armed=d["armed"], records=d["records"],
                         sample_count=d["sample_count"], start_cycle=d["start_cycle"],
                         trigger_cycle=d["trigger_cycle"], settings=t.settings)
+
+
+def _read(studio: Studio, trace_id: int, **kw: Any) -> tuple[dict[str, Any], TraceSettings]:
+    """The record, copied in the kernel thread while the trace records; a trace that no longer records (done,
+    stopped) is read in the request's thread, so a long CSV export does not hold up the control period."""
+
+    def get(c: Controller) -> tuple[Trace, dict[str, Any] | None]:
+        t = c.traces.get(trace_id)
+        return t, (t.read(**kw) if t.active else None)
+
+    trace, data = studio.runner.call(get)
+    return (data if data is not None else trace.read(**kw)), trace.settings
 
 
 @router.get("/traces/variables", response_model=TraceCatalog, summary="Traceable variables, grouped")
@@ -63,11 +75,7 @@ def get_trace(trace_id: int, studio: Studio = Depends(get_studio),
               max_points: int | None = Query(None, ge=2, le=1_000_000, description="At most this many samples"),
               decimation: int | None = Query(None, ge=1, le=1_000_000, description="Every k-th sample")
               ) -> TraceData:
-    def read(c: Controller) -> tuple[dict[str, Any], TraceSettings]:
-        t = c.traces.get(trace_id)
-        return t.read(max_points=max_points, decimation=decimation), t.settings
-
-    d, settings = studio.runner.call(read)
+    d, settings = _read(studio, trace_id, max_points=max_points, decimation=decimation)
     return TraceData(
         id=d["id"], name=d["name"], state=d["state"], armed=d["armed"], records=d["records"],
         sample_count=d["sample_count"],
@@ -81,7 +89,7 @@ def get_trace(trace_id: int, studio: Studio = Depends(get_studio),
 @router.get("/traces/{trace_id}/csv", summary="The record as CSV (every sample)",
             response_class=Response, responses={200: {"content": {"text/csv": {}}}, **NOT_FOUND})
 def trace_csv(trace_id: int, studio: Studio = Depends(get_studio)) -> Response:
-    d = studio.runner.call(lambda c: c.traces.get(trace_id).read())
+    d, _ = _read(studio, trace_id)
     buf = io.StringIO()
     head = ["cycle", "time_s"] + [f"{s['label']} [{s['unit']}]" if s["unit"] else s["label"] for s in d["series"]]
     buf.write(",".join(head) + "\n")
