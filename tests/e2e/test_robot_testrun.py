@@ -78,7 +78,7 @@ def test_robot_jog_demo_and_xy_move(page, server: Server) -> None:
         timeout=10000)
     assert page.get_by_test_id("robot-tcp").inner_text() != tcp_before
     after = _settled_shot(frame, str(ARTIFACTS / "robot-jog-after.png"))
-    page.screenshot(path=str(ARTIFACTS / "robot-testrun.png"))
+    page.screenshot(path=str(ARTIFACTS / "robot-testrun.png"), timeout=90000)  # the 3D frame renders in software
     changed = _changed_fraction(page, before, after)
     assert changed > 0.003, f"the picture hardly changed ({changed:.4f} of the pixels)"
 
@@ -87,7 +87,7 @@ def test_robot_jog_demo_and_xy_move(page, server: Server) -> None:
     page.get_by_test_id(f"robot-demo-status-{ROBOT}").filter(has_text="1 cycles").wait_for(timeout=30000)
     conveyor = httpx.get(server.api("/axes/MC_Axis007")).json()["variables"]
     assert conveyor["Status"]["Continuous"] is True
-    page.screenshot(path=str(ARTIFACTS / "robot-demo.png"))
+    page.screenshot(path=str(ARTIFACTS / "robot-demo.png"), timeout=90000)  # the 3D frame renders in software
     page.get_by_test_id(f"robot-demo-stop-{ROBOT}").click()
     page.get_by_test_id(f"robot-demo-run-{ROBOT}").wait_for(timeout=10000)
     _group_state(page, ROBOT, "Standby")
@@ -110,5 +110,5 @@ def test_robot_jog_demo_and_xy_move(page, server: Server) -> None:
     g = next(x for x in httpx.get(server.api("/groups")).json() if x["name"] == XY)
     assert g["cmd_pos"] == pytest.approx([120.0, 60.0], abs=1e-6) and g["error_code"] == "0000"
     page.get_by_test_id(f"group-last-{XY}").filter(has_text="MC_MoveLinear").wait_for(timeout=5000)
-    page.screenshot(path=str(ARTIFACTS / "group-xy-testrun.png"))
+    page.screenshot(path=str(ARTIFACTS / "group-xy-testrun.png"), timeout=90000)  # the 3D frame renders in software
     assert not [e for e in page.console_errors if "WebGL" not in e and "favicon" not in e], page.console_errors
