@@ -206,3 +206,40 @@ def test_trail_is_bounded_and_sent_when_the_robot_stops(scene: SceneServer) -> N
     assert not view.trail_dirty
     assert view.trail_handle.points.shape == (TRAIL_POINTS - 1, 2, 3)
     np.testing.assert_allclose(view.trail_handle.points[-1, 1], expected[-1] * MM, atol=1e-6)
+
+
+def test_plant_workpieces_ride_on_the_conveyor_axis(scene: SceneServer) -> None:
+    """Without `set_conveyor`, the plant's workpieces (plant/workpieces.py: one every 200 mm of belt travel) move
+    with the conveyor axis's feedback."""
+    from mcstudio.plant.workpieces import WorkpieceSource
+
+    c = Controller(delta_project())
+    scene.rebuild(c)
+    conv = scene.conveyor
+    assert conv is not None
+    snap = c.snapshot
+    mc = dict(snap.mc)
+    act = mc["act_pos"].copy()
+    act[3] = 450.0
+    mc["act_pos"] = act
+    scene.update(dataclasses.replace(snap, mc=mc))
+    half = conv.spec.length / 2.0
+    expected = WorkpieceSource(pitch=200.0, entry_x=-half, exit_x=half).positions(450.0)
+    assert conv.workpiece_count == len(expected) >= 2
+    np.testing.assert_allclose(conv.workpieces.batched_positions[: len(expected)], np.array(expected) * MM,
+                               atol=1e-12)
+
+
+def test_coordinate_systems_defined_by_the_program_are_shown(scene: SceneServer) -> None:
+    """MC_DefineCoordSystem in the controller → the UCS frame appears in the next frame."""
+    import types
+
+    c = Controller(delta_project())
+    scene.rebuild(c)
+    scene._runner = types.SimpleNamespace(controller=c, epoch=0)  # type: ignore[assignment]
+    d = c.fb("MC_DefineCoordSystem", AxesGroup="MC_Group000", Execute=True,
+             CoordTransform={"CSID": 2, "Pose": [10.0, 20.0, -300.0, 0.0, 0.0, 90.0]})
+    step_until(c, d, "Done")
+    scene.update(c.snapshot, force=True)
+    frame = scene.robots[0].view._ucs[2]
+    np.testing.assert_allclose(frame.position, [0.01, 0.02, -0.3])

@@ -20,6 +20,7 @@ import numpy as np
 
 from ..controller.mc.enums import _eMC_COUNT_MODE, _eMC_UNITS
 from ..controller.mc.kinematics import UserCoordSystem
+from ..plant.workpieces import WorkpieceSource
 from .conveyor_view import ConveyorSpec, ConveyorView
 from .geometry import MM
 from .robot_view import RobotView
@@ -90,6 +91,9 @@ class SceneServer:
         self._conveyor_position = 0.0
         self._workpieces: list[tuple[float, float, float]] = []
         self._workpieces_version = 0
+        # the plant's workpieces (plant/workpieces.py) on the project's conveyor axis, until set_conveyor is called
+        self._source: WorkpieceSource | None = None
+        self._coord_seen: dict[str, dict[int, Any]] = {}
         self._lock = threading.RLock()
         self._last_key: tuple[Any, ...] | None = None
         self._last_snap: Snapshot | None = None
@@ -196,6 +200,11 @@ class SceneServer:
                 self._conveyor_index = conveyor_axis(controller, specs)
                 if specs:
                     self.conveyor = ConveyorView(self.server, ConveyorSpec.under(specs[0].workspace))
+                    half = self.conveyor.spec.length / 2.0
+                    self._source = WorkpieceSource(pitch=200.0, entry_x=-half, exit_x=half)
+                else:
+                    self._source = None
+                self._coord_seen = {}
                 self._place_floor_and_camera(specs, move_clients=[s.params for s in specs]
                                              != [s.params for s in old_specs])
             self._last_key = None
@@ -248,6 +257,23 @@ class SceneServer:
                     with self.server.atomic():
                         r.view.set_coord_systems(systems)
 
+    def _follow_coord_systems(self) -> None:
+        """Show the user coordinate systems MC_DefineCoordSystem defined. The viz thread copies the group's dict of
+        immutable poses (one atomic read under the GIL) and redraws only when it changed."""
+        runner = self._runner
+        if runner is None:
+            return
+        groups = getattr(runner.controller.mc, "groups_by_name", {})
+        for r in self.robots:
+            g = groups.get(r.view.spec.group)
+            if g is None:
+                continue
+            systems = dict(getattr(g, "coord_systems", {}))
+            if systems != self._coord_seen.get(g.name, {}):
+                self._coord_seen[g.name] = systems
+                with self.server.atomic():
+                    r.view.set_coord_systems(systems)
+
     # ------------------------------------------------------------------ per frame
     def readings(self, snap: Snapshot) -> list[RobotReading]:
         return [read_robot(r.view.spec, snap, r.indices) for r in self.robots]
@@ -261,6 +287,8 @@ class SceneServer:
             i = self._conveyor_index
             if i is not None and i < len(snap.mc["act_pos"]):
                 conv = float(snap.mc["act_pos"][i])
+            auto = self._source is not None and self._workpieces_version == 0 and i is not None
+            self._follow_coord_systems()
             key = (tuple(r.key for r in readings), conv, self._workpieces_version)
             if key == self._last_key and not force:
                 self.stats.skipped += 1
@@ -274,8 +302,13 @@ class SceneServer:
                 for r, reading in zip(self.robots, readings, strict=True):
                     r.view.apply(reading)
                 if self.conveyor is not None:
-                    changed = force or self._last_key is None or self._last_key[2] != self._workpieces_version
-                    self.conveyor.set(conv, self._workpieces if changed else None)
+                    if auto:  # the plant's workpieces move with the conveyor's feedback
+                        assert self._source is not None
+                        moved = force or self._last_key is None or self._last_key[1] != conv
+                        self.conveyor.set(conv, self._source.positions(conv) if moved else None)
+                    else:
+                        changed = force or self._last_key is None or self._last_key[2] != self._workpieces_version
+                        self.conveyor.set(conv, self._workpieces if changed else None)
             self._last_key = key
         self.stats.add(time.perf_counter() - t0)
         return True
