@@ -353,11 +353,14 @@ class Controller:
                 fbs[fid] = prev.fbs[fid]  # type: ignore[union-attr]
                 continue
             hit = cache.get(fid)
-            if hit is not None and hit[0] == fb.inp and hit[1] == fb.out and hit[2].lease_s == e.lease_s:
-                fbs[fid] = hit[2]
+            same_inputs = hit is not None and hit[0] == fb.inp
+            if same_inputs and hit[1] == fb.out and hit[2].lease_s == e.lease_s:  # type: ignore[index]
+                fbs[fid] = hit[2]  # type: ignore[index]
                 continue
-            view = FBView(fid, fb.DEF.name, fb.inputs_json(), fb.outputs_json(), e.lease_s)
-            cache[fid] = (dict(fb.inp), dict(fb.out), view)
+            # outputs changed (the usual case: a running instruction): the rendered inputs are reused
+            inputs = hit[2].inputs if same_inputs else fb.inputs_json()  # type: ignore[index]
+            view = FBView(fid, fb.DEF.name, inputs, fb.outputs_json(), e.lease_s)
+            cache[fid] = (hit[0] if same_inputs else dict(fb.inp), dict(fb.out), view)  # type: ignore[index]
             fbs[fid] = view
         if len(cache) > len(fbs):
             for fid in [k for k in cache if k not in fbs]:
