@@ -81,11 +81,14 @@ class CamBatch:
                                   if r == REF_LATEST else (lambda mm: mm.prev_cmd_pos))
         # per table: its phases, distances and slopes (local indices); the flattened set for mixed batches
         cs = self.set
+        icpt = cs.D - cs.slope * cs.P
         per_table = []
         for t in range(len(tables)):
             a, b = int(cs.start[t]), int(cs.end[t])
-            per_table.append((cs.P[a:b + 1], cs.D[a:b + 1], cs.slope[a:b + 1]))
-        self.flat = (cs.P, cs.D, cs.slope)
+            per_table.append((cs.P[a:b + 1], icpt[a:b + 1], cs.slope[a:b + 1]))
+        self.flat = (cs.P, icpt, cs.slope)
+        self.c0 = self.sref + self.add
+        m.prof_acc[self.slave] = 0.0
         self.one_table = per_table[0] if len(tables) == 1 else None
         self.last_interval = int(cs.end[0] - cs.start[0]) - 1
         self.groups = [(np.flatnonzero(self.tbl == t), per_table[t], int(cs.end[t] - cs.start[t]) - 1)
@@ -116,7 +119,7 @@ class CamBatch:
         # phase is in [0, end) now: no clipping; each table is searched on its own phases (exact bisection)
         g = self._g
         if self.one_table is not None:
-            P, D, slope = self.one_table
+            P, icpt, slope = self.one_table
             g[:] = np.searchsorted(P, phase, side="right")
             g -= 1
             np.minimum(g, self.last_interval, out=g)
@@ -126,24 +129,22 @@ class CamBatch:
                 gi = np.searchsorted(Pt, phase[sel], side="right") - 1
                 np.clip(gi, 0, last, out=gi)
                 g[sel] = gi
-            P, D, slope = self.flat
+            P, icpt, slope = self.flat
             g += self.lo  # local → flattened (groups use local indices)
-        np.take(P, g, out=w)
-        np.subtract(phase, w, out=w)
-        np.multiply(w, np.take(slope, g), out=w)
-        w += np.take(D, g)
+        # distance = intercept + slope · phase of the interval (intercept = D − slope · P, precomputed)
+        np.take(slope, g, out=w)
+        w *= phase
+        w += np.take(icpt, g)
         if self.one_table is None:
             g -= self.lo
         pos = self._pos
         np.multiply(self.sscale, w, out=pos)
-        pos += self.sref
-        pos += self.add
+        pos += self.c0  # reference + SlaveOffset + offset
         s = self.slave
         old = np.take(m.cmd_pos, s)
         np.subtract(pos, old, out=old)
         old /= T
-        m.prof_vel[s] = old
-        m.prof_acc[s] = 0.0
+        m.prof_vel[s] = old  # (prof_acc of the followers is 0 from the start of the batch)
         m.cmd_pos[s] = pos
         if count_nonzero(np.not_equal(g, self.index, out=self._b)):
             for k in np.flatnonzero(self._b).tolist():
@@ -163,11 +164,13 @@ class CamBatch:
         while p >= end:
             self.base[k] += end * ms
             self.sref[k] += step
+            self.c0[k] += step
             p -= end
             eop = True
         while p < 0.0:
             self.base[k] -= end * ms
             self.sref[k] -= step
+            self.c0[k] -= step
             p += end
         phase[k] = p
         if eop:
