@@ -815,9 +815,7 @@ class MotionModule:
             cmd[i] = pos
             if law.flags_changed:
                 law.flags_changed = False
-                self.changed.append(job)
-                if job.owner is not None:
-                    job.owner.wake()
+                self.push_law_outputs(job, pulse=getattr(law, "eop_cycle", -1) == self.cycle)
             if law.finished:
                 finished.append(law)
         if stale:
@@ -849,6 +847,18 @@ class MotionModule:
 
     batch_enabled = True  # tests compare the batch with the per-law path by turning it off
     batch_min = 12  # fewest steady followers worth a batch (measured: 14 µs for a batch, ≈ 1.1 µs per follower alone)
+
+    def push_law_outputs(self, job: Any, *, pulse: bool) -> None:
+        """A law's outputs changed (InSync, InGear, Index …): the instance shows them at the end of this period.
+        It is woken only for a pulse it must end by its next call (EndOfProfile); otherwise it may stay asleep —
+        it is only marked for the next snapshot, so the program stage keeps skipping the settled instances."""
+        self.changed.append(job)
+        owner = job.owner
+        if owner is not None:
+            if pulse:
+                owner.wake()
+            else:
+                self.fb_touched.add(owner.id)
 
     def sync_changed(self) -> None:
         """Something the batch depends on changed (a law's table, phasing, offset, a buffered successor, InSync)."""

@@ -98,7 +98,7 @@ class CamBatch:
         m = self.m
         mpos = self.mpos
         if self.single_source is not None:
-            np.take(self.single_source(m), self.master, out=mpos)
+            self.single_source(m).take(self.master, out=mpos)
         else:
             if self.sel_latest.size:
                 mpos[self.sel_latest] = m.cmd_pos[self.src_latest]
@@ -120,28 +120,28 @@ class CamBatch:
         g = self._g
         if self.one_table is not None:
             P, icpt, slope = self.one_table
-            g[:] = np.searchsorted(P, phase, side="right")
+            g[:] = P.searchsorted(phase, side="right")
             g -= 1
             np.minimum(g, self.last_interval, out=g)
             np.maximum(g, 0, out=g)
         else:
             for sel, (Pt, _Dt, _st), last in self.groups:
-                gi = np.searchsorted(Pt, phase[sel], side="right") - 1
+                gi = Pt.searchsorted(phase[sel], side="right") - 1
                 np.clip(gi, 0, last, out=gi)
                 g[sel] = gi
             P, icpt, slope = self.flat
             g += self.lo  # local → flattened (groups use local indices)
         # distance = intercept + slope · phase of the interval (intercept = D − slope · P, precomputed)
-        np.take(slope, g, out=w)
+        slope.take(g, out=w)
         w *= phase
-        w += np.take(icpt, g)
+        w += icpt.take(g)
         if self.one_table is None:
             g -= self.lo
         pos = self._pos
         np.multiply(self.sscale, w, out=pos)
         pos += self.c0  # reference + SlaveOffset + offset
         s = self.slave
-        old = np.take(m.cmd_pos, s)
+        old = m.cmd_pos.take(s)
         np.subtract(pos, old, out=old)
         old /= T
         m.prof_vel[s] = old  # (prof_acc of the followers is 0 from the start of the batch)
@@ -178,10 +178,7 @@ class CamBatch:
             self._push(law)
 
     def _push(self, law: CamLaw) -> None:
-        job = law.job
-        self.m.changed.append(job)
-        if job.owner is not None:
-            job.owner.wake()
+        self.m.push_law_outputs(law.job, pulse=law.eop_cycle == self.m.cycle)
 
     def write_back(self) -> None:
         """Hand the state to the laws (before the batch is rebuilt or a law leaves it)."""
