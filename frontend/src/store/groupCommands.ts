@@ -354,35 +354,56 @@ const groupState = (g: string) => groupsStore.get().groups.find((x) => x.name ==
 const fbOut = (id: number) => liveStore.get().fbs[String(id)]?.outputs;
 
 /**
- * Move the robot's arms to the inverse kinematics of `point` (MCS, mm) with MC_GroupSyncMoveAbsolute, then end the
- * synchronous positioning with MC_GroupStop — the way into the workspace from the zero pose (which lies above it).
+ * Move the robot's arms to the inverse kinematics of `point` (MCS, mm) — the way into the workspace from the zero pose
+ * (which lies above it). As on the controller, single-axis positioning of the robot's axes needs the group disabled
+ * (§9.9): the group is disabled, the three axes move with MC_MoveAbsolute at a moderate speed (no step, so the drives
+ * follow without following-error warnings), and the group is enabled again if it was.
  */
 export async function moveToPose(group: string, point: number[]): Promise<boolean> {
+  const made: number[] = [];
   try {
     const inv = await unwrap(
       api.POST("/api/v1/groups/{name}/kinematics/inverse", { params: { path: { name: group } }, body: { position: point } }),
     );
     const angles = (inv as { axes: number[] }).axes;
-    const out = await unwrap(
-      api.POST("/api/v1/fb", {
-        body: { type: "MC_GroupSyncMoveAbsolute", inputs: { AxesGroup: group, Position: angles, Execute: true }, lease_s: null },
-      }),
-    );
-    patchGroup(group, { last: { id: out.id, type: out.type, outputs: out.outputs, gone: false } });
-    const ok = await waitFor(() => fbOut(out.id)?.InPosition === true || fbOut(out.id)?.Error === true, 10000);
-    const failed = !ok || fbOut(out.id)?.Error === true;
-    if (!failed) {
-      await stopGroup(group, 0);
-      await deleteFb(out.id);
-    } else {
-      tracked.set(out.id, { id: out.id, group, type: out.type, state: "error" });
+    const info = groupState(group);
+    if (!info) throw new Error(`no group ${group}`);
+    const wasEnabled = info.state !== "Disabled";
+    if (wasEnabled) {
+      await disableGroup(group);
+      if (!(await waitFor(() => groupState(group)?.state === "Disabled", 5000))) throw new Error("the group did not disable");
     }
-    return !failed;
+    for (let k = 0; k < info.axes.length; k++) {
+      const out = await unwrap(
+        api.POST("/api/v1/fb", {
+          body: {
+            type: "MC_MoveAbsolute",
+            inputs: { Axis: info.axes[k], Execute: true, Position: angles[k], Velocity: READY_VELOCITY,
+              Acceleration: READY_ACCELERATION, Deceleration: READY_ACCELERATION },
+            lease_s: null,
+          },
+        }),
+      );
+      made.push(out.id);
+    }
+    const settled = () => made.every((id) => fbOut(id)?.Done === true || fbOut(id)?.Error === true
+      || fbOut(id)?.CommandAborted === true);
+    const ok = await waitFor(settled, 15000) && made.every((id) => fbOut(id)?.Done === true);
+    if (wasEnabled) {
+      await enableGroup(group);
+      await waitFor(() => groupState(group)?.state === "Standby", 5000);
+    }
+    return ok;
   } catch (err) {
     notifyError("Move to the ready pose", err);
     return false;
+  } finally {
+    await Promise.all(made.map((id) => deleteFb(id)));
   }
 }
+
+const READY_VELOCITY = 60; // °/s of each arm
+const READY_ACCELERATION = 600; // °/s²
 
 export interface DemoConfig {
   conveyor: string;
