@@ -762,6 +762,17 @@ class AxesGroup:
         unchanged = target == self.sync_target
         self.sync_target = target
         inpos = unchanged
+        if self.kinematics is not None:
+            # a robot: an axis commanded faster than its Maximum Velocity is 6705 with an immediate stop instead of a
+            # saturated command (omron-robot-delta3.md §9.8 [Emulator], §6.3; decision D49)
+            for k, a in enumerate(self.axes):
+                vmax = a.params.Operation.MaxVel
+                if abs(target[k] - float(m.cmd_pos[a.i])) > vmax * T * (1.0 + 1e-9):
+                    from .robot import E_MAX_VELOCITY, fail_running
+
+                    fail_running(self, job, E_MAX_VELOCITY, f"A{k} {a.name}: target step above Maximum Velocity "
+                                 f"{vmax:g} (attached information: logical axis {k})")
+                    return
         for k, a in enumerate(self.axes):
             i = a.i
             cur = float(m.cmd_pos[i])
