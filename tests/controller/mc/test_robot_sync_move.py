@@ -14,7 +14,7 @@ from tests.controller.mc.test_robot_motion import GRP, robot
 def test_robot_follows_targets_within_maximum_velocity() -> None:
     c, g = robot()
     start = [float(c.mc.cmd_pos[i]) for i in g.idx]
-    fb = c.fb("MC_GroupSyncMoveAbsolute", AxesGroup=GRP, Execute=True, Position=start + [0.0])
+    fb = c.fb("MC_GroupSyncMoveAbsolute", AxesGroup=GRP, Execute=True, Position=[*start, 0.0])
     c.step(2)
     for k in range(1, 200):  # 0.1° per period = 100 °/s, below the demo's 360 °/s
         c.set_inputs(fb.id, {"Position": [q + 0.1 * k for q in start] + [0.0]})
@@ -26,7 +26,7 @@ def test_robot_follows_targets_within_maximum_velocity() -> None:
 def test_a_step_above_maximum_velocity_is_6705_and_an_immediate_stop() -> None:
     c, g = robot()
     start = [float(c.mc.cmd_pos[i]) for i in g.idx]
-    fb = c.fb("MC_GroupSyncMoveAbsolute", AxesGroup=GRP, Execute=True, Position=start + [0.0])
+    fb = c.fb("MC_GroupSyncMoveAbsolute", AxesGroup=GRP, Execute=True, Position=[*start, 0.0])
     c.step(2)
     c.set_inputs(fb.id, {"Position": [start[0] + 1.0, start[1], start[2], 0.0]})  # 1° in 1 ms = 1000 °/s
     c.step(1)
