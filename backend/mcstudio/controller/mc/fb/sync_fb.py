@@ -9,6 +9,7 @@ stage computes the slave's command position from the master every period. MC_Cam
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from .. import errors as E
@@ -75,6 +76,21 @@ I_RATIO_DEN = Var("RatioDenominator", "UDINT", 10000, "Gear ratio denominator", 
 I_OUT_MODE = Var("OutMode", "_eMC_OUT_MODE", 0, "Reserved: _mcStop", None, "0", allowed=(0,))
 
 
+def _may_start(fb: ExecuteFB, axis: Axis, accept: str, check: Callable[[Axis], int]) -> bool:
+    """The acceptance in the axis state (A-3, `acceptance.py`) and the instruction's input checks — input errors
+    before state errors (D2); False once the instance shows CommandAborted or Error."""
+    verdict, code = axis.check_start(accept)
+    if verdict == "abort":
+        fb._finish("CommandAborted")
+        return False
+    if code != E.E_AXIS_TYPE:  # an encoder axis is refused before anything else (A-3.7)
+        code = check(axis) or code
+    if code:
+        fb.fail(code, axis)
+        return False
+    return True
+
+
 class _SyncFB(ExecuteFB):
     """A synchronized-control instruction: the slave is the axis the job runs on."""
 
@@ -85,7 +101,9 @@ class _SyncFB(ExecuteFB):
         super().__init_subclass__(**kwargs)
         # The law's outputs (InCam, InSync, InGear, Index …) are pushed by the sync stage, which also wakes the
         # instance; its call may sleep like a plain instruction's (a pulse to clear forces the next call, below)
-        cls._plain = "call" not in vars(cls) and "after_call" not in vars(cls)
+        cls._plain = "call" not in vars(cls) and "after_call" not in vars(cls) and not cls.EVERY_PERIOD
+
+    EVERY_PERIOD = False  # the instruction reads its inputs every period (it must never sleep)
 
     def resolve_axis(self, name_input: str = "Slave", *, allow_unused: bool = False) -> Axis | None:
         return super().resolve_axis(name_input, allow_unused=allow_unused)
@@ -114,14 +132,7 @@ class _SyncFB(ExecuteFB):
         raise NotImplementedError
 
     def execute(self, axis: Axis) -> None:
-        verdict, code = axis.check_start(self.ACCEPT)
-        if verdict == "abort":
-            self._finish("CommandAborted")
-            return
-        if code != E.E_AXIS_TYPE:
-            code = self._check(axis) or code  # input errors before state errors (D2)
-        if code:
-            self.fail(code, axis)
+        if not _may_start(self, axis, self.ACCEPT, self._check):
             return
         job = Job(JobKind.SYNC, self, buffer_mode=self.inp.get("BufferMode", 0))
         job.info["law"] = self._law(axis, job)
@@ -320,6 +331,10 @@ class MC_CamIn(_SyncFB):
 
 
 # --------------------------------------------------------------------------------------------------- MC_CamOut
+_OUT_INPUTS = (I_EXECUTE, Var("Deceleration", "LREAL", 0.0, "Deceleration (0 = stop at once)", "unit/s²",
+                              "positive or 0"), I_JERK, I_OUT_MODE)
+
+
 class _OutFB(_SyncFB):
     KINDS: tuple[str, ...] = ()
     ACCEPT = "sync_out"
@@ -340,14 +355,7 @@ class _OutFB(_SyncFB):
         return 0
 
     def execute(self, axis: Axis) -> None:
-        verdict, code = axis.check_start(self.ACCEPT)
-        if verdict == "abort":
-            self._finish("CommandAborted")
-            return
-        if code != E.E_AXIS_TYPE:
-            code = self._check(axis) or code
-        if code:
-            self.fail(code, axis)
+        if not _may_start(self, axis, self.ACCEPT, self._check):
             return
         dec = self.inp["Deceleration"]
         _, _, dec = _clamp_profile(axis, 0.0, 0.0, dec)
@@ -362,8 +370,7 @@ class MC_CamOut(_OutFB):
         summary="Ends camming of the slave: it decelerates to a stop; the master is not affected.",
         kind="execute",
         inouts=(IO_SLAVE,),
-        inputs=(I_EXECUTE, Var("Deceleration", "LREAL", 0.0, "Deceleration (0 = stop at once)", "unit/s²",
-                               "positive or 0"), I_JERK, I_OUT_MODE),
+        inputs=_OUT_INPUTS,
         outputs=(O_DONE, O_BUSY, O_ABORTED, O_ERROR, O_ERRORID),
         spec="omron-axis-instructions.md MC_CamOut (seed 000 line 8217)",
     )
@@ -378,8 +385,7 @@ class MC_GearOut(_OutFB):
         summary="Ends MC_GearIn / MC_GearInPos on the slave: it decelerates to a stop; the master is not affected.",
         kind="execute",
         inouts=(IO_SLAVE,),
-        inputs=(I_EXECUTE, Var("Deceleration", "LREAL", 0.0, "Deceleration (0 = stop at once)", "unit/s²",
-                               "positive or 0"), I_JERK, I_OUT_MODE),
+        inputs=_OUT_INPUTS,
         outputs=(O_DONE, O_BUSY, O_ABORTED, O_ERROR, O_ERRORID),
         spec="omron-axis-instructions.md MC_GearOut (seed 000 line 9429)",
     )
@@ -942,6 +948,7 @@ class MC_SyncMoveAbsolute(_SyncFB):
         notes="MC_Stop and errors stop the axis immediately. Override is ignored.",
     )
     SYNC_OUTPUTS = ("InPosition",)
+    EVERY_PERIOD = True  # Position and the feedback are read every period
 
     def __init__(self, mc: Any, fb_id: int, inputs: dict[str, Any] | None = None) -> None:
         super().__init__(mc, fb_id, inputs)
@@ -965,14 +972,7 @@ class MC_SyncMoveAbsolute(_SyncFB):
         return target
 
     def execute(self, axis: Axis) -> None:
-        verdict, code = axis.check_start(self.ACCEPT)
-        if verdict == "abort":
-            self._finish("CommandAborted")
-            return
-        if code != E.E_AXIS_TYPE:
-            code = self._check(axis) or code
-        if code:
-            self.fail(code, axis)
+        if not _may_start(self, axis, self.ACCEPT, self._check):
             return
         job = Job(JobKind.CYCLIC, self, buffer_mode=0)
         job.info["law"] = CyclicPositionLaw(self.mc, job, axis, self._resolve(axis))
@@ -999,8 +999,6 @@ class MC_SyncMoveAbsolute(_SyncFB):
             self.out["InPosition"] = (in_range and not changed) or (changed and self.out["InPosition"])
         super().sync_job()
 
-
-MC_SyncMoveAbsolute._plain = False  # reads Position and the feedback every period: never asleep
 
 SYNC_MOVE_VELOCITY_PDO = (0x60FF, 0x6060, 0x6061)  # target velocity, modes of operation (display)
 
@@ -1043,14 +1041,7 @@ class MC_SyncMoveVelocity(ExecuteFB):
         return max(-vmax, min(vmax, v))
 
     def execute(self, axis: Axis) -> None:
-        verdict, code = axis.check_start("move")
-        if verdict == "abort":
-            self._finish("CommandAborted")
-            return
-        if code != E.E_AXIS_TYPE:
-            code = self._check(axis) or code
-        if code:
-            self.fail(code, axis)
+        if not _may_start(self, axis, "move", self._check):
             return
         job = Job(JobKind.CSV, self, buffer_mode=self.inp["BufferMode"])
         job.velocity = self._velocity(axis)
@@ -1061,9 +1052,6 @@ class MC_SyncMoveVelocity(ExecuteFB):
         if job is not None and axis is not None and job.running:
             job.velocity = self._velocity(axis)  # a new value applies at once (its rules)
         super().sync_job()
-
-
-MC_SyncMoveVelocity._plain = False  # reads Velocity every period
 
 
 SYNC_CLASSES: tuple[type[ExecuteFB], ...] = (MC_CamIn, MC_CamOut, MC_GearIn, MC_GearInPos, MC_GearOut, MC_MoveLink,
