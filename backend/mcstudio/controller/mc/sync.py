@@ -32,6 +32,7 @@ import math
 from bisect import bisect_right
 from typing import TYPE_CHECKING, Any
 
+from .axis_planning import E_INPOS_TIME
 from .profile import Segments
 
 if TYPE_CHECKING:
@@ -319,7 +320,7 @@ class LinkLaw(Law):
         self.slave.in_pos_waiting = True
         if (m.cycle - self.arrived_cycle) * m.period_s * 1000.0 >= op.InPosCheckTime:
             self.slave.in_pos_waiting = False
-            self.slave.raise_error(0x6455, source=None, detail="MC_MoveLink: in-position check time exceeded")
+            self.slave.raise_error(E_INPOS_TIME, source=None, detail="MC_MoveLink: in-position check time exceeded")
         return False
 
     def fraction(self, x: float) -> float:
