@@ -300,3 +300,77 @@ def test_set_kin_transform_replaces_the_startup_kinematics() -> None:
     mv = move(c, [0.0, 0.0, -200.0])
     step_until(c, mv, "Done", limit=1000)
     assert tcp(c, g) == pytest.approx((0.0, 0.0, -200.0), abs=1e-9)
+
+
+def push(c: Controller, g: AxesGroup, degrees: float) -> None:
+    """An external push on the stopped robot: every arm's shaft is turned by `degrees` behind the drive's back (the
+    mechanism takes a position changed from outside as it is, `plant/mechanism.py`); the command stays where it
+    was, so only the TCP **feedback** moves (the position loops pull it back over the next periods)."""
+    drives = c.network.drives
+    for a in g.axes:
+        slave = next(s for s in c.network.slaves if s.node_address == a.config.node_address)
+        drives.position[slave.row] += round(degrees * a.ppu)
+
+
+def feedback_tcp(c: Controller, g: AxesGroup) -> tuple[float, float, float]:
+    assert g.kinematics is not None
+    st, p = forward_point(g.kinematics.params(), *[float(c.mc.act_pos[i]) for i in g.idx])
+    assert st == 0
+    return p
+
+
+TOP = (0.0, 0.0, -55.0)  # 4.9 mm below the usable top face of the demo workspace (Zu −50 mm, 0.1 mm margin)
+
+
+def test_workspace_check_4_feedback_of_a_robot_at_rest() -> None:
+    """§3.2 check 4 (seed 003 L1982 "while the robot is stopped, is the TCP feedback inside?", L2028 "TCP target or
+    TCP feedback beyond the drivable range → error, the robot stops immediately"), decision D92: a robot at rest
+    (Standby) pushed 2° up on every arm has its command inside but its feedback above the workspace → the next
+    MC_MoveTimeAbsolute is 6701 (L7072: "current position … when starting the next instruction") with the robot
+    held and the group ErrorStop; after MC_GroupReset and the position loops settling, the same start runs."""
+    c, g = robot(at=TOP)
+    c.step(200)  # settled
+    assert g.state == GroupState.Standby
+    push(c, g, -2.0)  # negative = arm up (§2.2)
+    c.step(1)
+    assert tcp(c, g) == pytest.approx(TOP, abs=1e-6), "the command is inside"
+    assert feedback_tcp(c, g)[2] > -50.1, "the feedback is above the usable top face"
+    fb = move(c, [0.0, 0.0, -150.0])
+    held = [float(c.mc.cmd_pos[i]) for i in g.idx]
+    c.step(1)
+    assert fb.Error and fb.ErrorID == 0x6701 and g.state == GroupState.ErrorStop
+    c.step(5)
+    assert [float(c.mc.cmd_pos[i]) for i in g.idx] == held
+    assert any(e.code == "67010000" for e in c.events.list())
+    c.step(300)  # the position loops bring the arms back to the command
+    assert feedback_tcp(c, g) == pytest.approx(TOP, abs=1e-3)
+    reset = c.fb("MC_GroupReset", AxesGroup=GRP, Execute=True)
+    step_until(c, reset, "Done")
+    again = move(c, [0.0, 0.0, -150.0])
+    step_until(c, again, "Done", limit=1000)
+    assert not again.Error
+
+
+def test_workspace_check_4_is_not_made_on_a_moving_robot_nor_with_the_check_off() -> None:
+    """D92: check 4 watches a robot at rest. Multi-execution onto a moving robot (group Moving; the feedback lags the
+    command) checks the command only (check 1); with EnableWorkspace FALSE there is no check 4 either."""
+    c, g = robot(at=TOP)
+    c.step(200)
+    first = move(c, [0.0, 0.0, -60.0], TrajData={**TRAJ, "TrajTime": 1000})
+    c.step(5)
+    assert g.state == GroupState.Moving
+    push(c, g, -2.0)
+    c.step(1)
+    assert feedback_tcp(c, g)[2] > -50.1
+    second = move(c, [0.0, 0.0, -150.0])
+    c.step(1)
+    assert first.CommandAborted and second.Busy and not second.Error
+    step_until(c, second, "Done", limit=1000)
+    c, g = robot(at=TOP)
+    c.step(200)
+    g.workspace_check = False
+    push(c, g, -2.0)
+    c.step(1)
+    fb = move(c, [0.0, 0.0, -150.0])
+    c.step(1)
+    assert fb.Busy and not fb.Error

@@ -4,8 +4,9 @@ The instance checks its inputs and the start conditions and hands a motion of `c
 the group's motion stage outputs one command position per period. Check order (decision D80): inputs (542B, 5432,
 542C, 5715, 5714, 5712, 5713) → kinematics set (5710) → group state (543F disabled; CommandAborted in Stopping or
 ErrorStop) → composition axes (5441 servo OFF, 5466 home undefined, 5442, limit inputs 6443/6444) → CSID (570B) →
-start position (570F, workspace check 1: 6701) → target (workspace check 2: 571B, 570F) → 6703/6704. Every error
-is a group minor fault and stops the robot immediately; re-execution is 543B (§10.2).
+start position (570F, workspace check 1: 6701) → feedback of a robot at rest (workspace check 4: 570F, 6701; D92) →
+target (workspace check 2: 571B, 570F) → 6703/6704. Every error is a group minor fault and stops the robot
+immediately; re-execution is 543B (§10.2).
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from typing import Any
 
 from .. import errors as E
 from ..enums import _eMC_UNITS
-from ..group import AxesGroup
+from ..group import AxesGroup, GroupState
 from ..jobs import JobKind, JobStatus
 from ..kinematics import Status, UserCoordSystem, contains_point, forward_point, inverse_point
 from ..kinematics.codes import E_CSID, E_CURRENT_OUTSIDE, E_INIT_WORKPIECE_OUTSIDE, E_KIN_CALC, E_TARGET_OUTSIDE
@@ -115,6 +116,25 @@ class _RobotMotionFB(_GroupRef, ExecuteFB):
         st, p = forward_point(kin[0], q[0], q[1], q[2])
         return (0, p) if st == Status.OK else (E_KIN_CALC, p)
 
+    def feedback_error(self, group: AxesGroup, check: Any) -> int:
+        """Workspace check 4 (§3.2, seed 003 L1982 and L2028; decision D92): a robot **at rest** — the group Standby,
+        no robot instruction running — starts only if its TCP **feedback** position (forward kinematics of the
+        axes' Act.Pos) lies inside the workspace (0.1 mm margin): else 6701, the manual's "current position outside
+        the workspace … when starting the next instruction" (L7072–7095), a group error with the robot held
+        (ErrorStop). Feedback angles without a forward solution → 570F ("an axis stopped where the forward
+        kinematics cannot be computed", §11). Not checked on a moving robot (multi-execution: the feedback lags the
+        command, check 1 covers the command) nor with EnableWorkspace FALSE (`check` None)."""
+        if check is None or group.state != GroupState.Standby:
+            return 0
+        kin = kinematics_of(group)
+        assert kin is not None
+        act = group.m.act_pos
+        q = [float(act[i]) for i in group.idx]
+        st, p = forward_point(kin[0], q[0], q[1], q[2])
+        if st != Status.OK:
+            return E_KIN_CALC
+        return 0 if contains_point(check, *p) else E_CURRENT_OUTSIDE
+
 
 class MC_MoveTimeAbsolute(_RobotMotionFB):
     DEF = FBDef(
@@ -173,6 +193,10 @@ class MC_MoveTimeAbsolute(_RobotMotionFB):
         p1 = to_mcs(ucs, (float(pos[0]), float(pos[1]), float(pos[2])))
         if check is not None and not contains_point(check, *p0):
             self.fail(E_CURRENT_OUTSIDE, group)  # workspace check 1
+            return
+        code = self.feedback_error(group, check)  # workspace check 4
+        if code:
+            self.fail(code, group)
             return
         if check is not None and not contains_point(check, *p1):
             self.fail(E_TARGET_OUTSIDE, group)  # workspace check 2
@@ -315,6 +339,10 @@ class MC_SyncLinearConveyor(_RobotMotionFB):
         w0 = to_mcs(planar, (float(pos[0]), float(pos[1]), float(pos[2])))
         if check is not None and not contains_point(check, *p0):
             self.fail(E_CURRENT_OUTSIDE, group)
+            return
+        code = self.feedback_error(group, check)  # workspace check 4
+        if code:
+            self.fail(code, group)
             return
         if check is not None and not contains_point(check, *w0):
             self.fail(E_INIT_WORKPIECE_OUTSIDE, group)
