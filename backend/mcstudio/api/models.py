@@ -124,10 +124,14 @@ class EventOut(_Model):
     source: str
     code: str = Field(description="Event code, eight hex digits")
     level: Literal["major fault", "partial fault", "minor fault", "observation", "information"]
-    message: str
-    cause: str = ""
-    correction: str = ""
-    detail: str = ""
+    message: str = Field(description="The manual's event name (or a note for information events)")
+    cause: str = Field("", description="The manual's cause of the error (appendix A-1)")
+    correction: str = Field("", description="The correction the manual suggests")
+    detail: str = Field("", description="Attached information: the input, the value, the 603Fh code …")
+    source_kind: Literal["axis", "group", "slave", "instruction", "controller"] = Field(
+        "controller", description="What the event is about (decision D125)")
+    source_name: str = Field("", description="The axis, axes group or slave name, or the instance label")
+    instruction: str = Field("", description="The instance involved (\"fb 3 MC_MoveAbsolute\"), if any")
 
 
 # ----------------------------------------------------------------------------------------------- _sAXIS_REF

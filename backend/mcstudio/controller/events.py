@@ -13,6 +13,10 @@ from dataclasses import asdict, dataclass
 from typing import Any, Literal
 
 Level = Literal["major fault", "partial fault", "minor fault", "observation", "information"]
+# What the event is about (decision D125): an axis or an axes group (their errors and observations, also when an
+# instruction raised them), an EtherCAT slave, an instruction instance (MC common errors, instance notes) or the
+# controller itself (project loaded, internal errors, ResetMCError).
+SourceKind = Literal["axis", "group", "slave", "instruction", "controller"]
 
 MAX_EVENTS = 10_000
 
@@ -29,6 +33,9 @@ class Event:
     cause: str = ""
     correction: str = ""
     detail: str = ""
+    source_kind: SourceKind = "controller"
+    source_name: str = ""  # the axis, group or slave name, the instance label, or "controller"
+    instruction: str = ""  # the instance involved, "fb 3 MC_MoveAbsolute", if any
 
     def as_dict(self) -> dict[str, Any]:
         return asdict(self)
@@ -41,10 +48,19 @@ class EventLog:
         self._seq = 0
 
     def add(self, *, cycle: int, time_s: float, source: str, code: str, level: Level, message: str,
-            cause: str = "", correction: str = "", detail: str = "") -> Event:
+            cause: str = "", correction: str = "", detail: str = "", source_kind: SourceKind = "controller",
+            source_name: str = "", instruction: str = "") -> Event:
+        if not cause and not correction and code != "00000000":
+            # codes outside the MC catalog's callers (EtherCAT master events …) still get the manual's text
+            from .mc.errors import describe
+
+            d = describe(code)
+            if d is not None:
+                cause, correction = d.cause, d.correction
         with self._lock:
             self._seq += 1
-            ev = Event(self._seq, cycle, time_s, source, code, level, message, cause, correction, detail)
+            ev = Event(self._seq, cycle, time_s, source, code, level, message, cause, correction, detail,
+                       source_kind, source_name or source, instruction)
             self._events.append(ev)
             return ev
 

@@ -248,7 +248,8 @@ class Controller:
                     fb.drop_dead_man()
                     self.events.add(cycle=self.cycle, time_s=self.time_s, source=fb.label, code="00000000",
                                     level="information",
-                                    message=f"lease of {entry.lease_s:g} s expired: Execute/Enable inputs set FALSE")
+                                    message=f"lease of {entry.lease_s:g} s expired: Execute/Enable inputs set FALSE",
+                                    source_kind="instruction", source_name=fb.label, instruction=fb.label)
 
     # ------------------------------------------------------------------ the control period
     def run_cycle(self) -> None:
@@ -302,9 +303,9 @@ class Controller:
         self._awake_wakes = mc.fb_wakes
 
     def _network_events(self) -> None:
-        for level, code, message in self.network.pending_events:
+        for level, code, message, slave in self.network.pending_events:
             self.events.add(cycle=self.cycle, time_s=self.time_s, source="EtherCAT master", code=code,
-                            level=level, message=message)  # type: ignore[arg-type]
+                            level=level, message=message, source_kind="slave", source_name=slave)  # type: ignore[arg-type]
         self.network.pending_events.clear()
 
     def step(self, cycles: int = 1, until: Until | None = None, *, publish: bool = True) -> int:

@@ -139,7 +139,8 @@ class Network:
                  library: Any = None) -> None:
         self.period_s = period_s
         self.auto_restart = auto_restart
-        self.pending_events: list[tuple[str, str, str]] = []  # (level, code, message) for the event log
+        # (level, code, message, slave name) for the event log
+        self.pending_events: list[tuple[str, str, str, str]] = []
         n = len(slaves)
         servo_pos = [k for k, s in enumerate(slaves) if s.device.kind == "servo"]
         enc_pos = [k for k, s in enumerate(slaves) if s.device.kind == "encoder"]
@@ -238,8 +239,8 @@ class Network:
         self._changing = any(s.wired and s.state != s.target for s in self.slaves)
 
     # ------------------------------------------------------------------ ESM
-    def _event(self, level: str, code: str, msg: str) -> None:
-        self.pending_events.append((level, code, msg))
+    def _event(self, level: str, code: str, msg: str, slave: Slave) -> None:
+        self.pending_events.append((level, code, msg, slave.name))
 
     def _start_slave(self, s: Slave, at_power_up: bool = False) -> None:
         """Init → Pre-Op → Safe-Op → Op; at power-up all at once (before the first period), else one step per
@@ -257,7 +258,7 @@ class Network:
         if not s.wired:
             if not s.error:
                 s.error = "not found on the wire (configured, not connected)"
-                self._event("minor fault", "84200000", f"slave {s.name} (node {s.node_address}): {s.error}")
+                self._event("minor fault", "84200000", f"slave {s.name} (node {s.node_address}): {s.error}", s)
             return False
         if s.state == ESM.Init:
             found = s.wired_device or s.device
@@ -265,7 +266,7 @@ class Network:
                 s.error = (f"identity mismatch: configured {s.device.name} (vendor {s.device.vendor_id:08X}h, product "
                            f"{s.device.product_code:08X}h), found {found.name} (vendor {found.vendor_id:08X}h, "
                            f"product {found.product_code:08X}h)")
-                self._event("minor fault", "84210000", f"slave {s.name} (node {s.node_address}): {s.error}")
+                self._event("minor fault", "84210000", f"slave {s.name} (node {s.node_address}): {s.error}", s)
                 return False
             s.state = ESM.PreOp
             return True
@@ -277,7 +278,7 @@ class Network:
         if s.state == ESM.SafeOp:
             s.state = ESM.Op
             if s.connected_once:
-                self._event("information", "00000000", f"slave {s.name} (node {s.node_address}) back in Op")
+                self._event("information", "00000000", f"slave {s.name} (node {s.node_address}) back in Op", s)
             s.connected_once = True
             s.lost = False
             return True
@@ -308,7 +309,7 @@ class Network:
             s.sdo_log.append(f"{sdo.index:04X}h:{sdo.subindex:02X}h ← {sdo.value}: abort {reason}")
             if sdo.abort_on_error:
                 s.error = f"start-up SDO line {k + 1} ({sdo.index:04X}h:{sdo.subindex:02X}h) aborted: {reason}"
-                self._event("minor fault", "84220000", f"slave {s.name} (node {s.node_address}): {s.error}")
+                self._event("minor fault", "84220000", f"slave {s.name} (node {s.node_address}): {s.error}", s)
                 return False
         return True
 
@@ -334,7 +335,7 @@ class Network:
             s.lost = True
         s.state = ESM.Init
         s.error = "disconnected (no response: working counter error)"
-        self._event("minor fault", "84230000", f"slave {s.name} (node {s.node_address}) disconnected")
+        self._event("minor fault", "84230000", f"slave {s.name} (node {s.node_address}) disconnected", s)
         self._refresh()
 
     def reconnect(self, node_address: int) -> None:

@@ -164,6 +164,46 @@ export interface paths {
         patch?: never;
         trace?: never;
     };
+    "/api/v1/project/save-as": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        get?: never;
+        put?: never;
+        /**
+         * Save the project as a new folder and continue in it
+         * @description Writes the running project (with its unsaved changes), its cam data and the current folder's other files (ESI files) to a new folder of the projects root, built under a hidden name and renamed into place; the studio then works in the new folder. An existing name is refused (409) unless `overwrite`.
+         */
+        post: operations["save_project_as_api_v1_project_save_as_post"];
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/project/revert": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        get?: never;
+        put?: never;
+        /**
+         * Reload the project from its folder, discarding unsaved changes
+         * @description Like opening the project again: the controller restarts at cycle 0 with the saved document. Refused with 409 while an axis moves; if the saved file is corrupt nothing changes (422 listing the problems).
+         */
+        post: operations["revert_project_api_v1_project_revert_post"];
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
     "/api/v1/project/schema": {
         parameters: {
             query?: never;
@@ -209,6 +249,43 @@ export interface paths {
         put?: never;
         /** Open a project folder by name */
         post: operations["open_project_api_v1_projects_open_post"];
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/project-templates": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        /** Templates for a new project (decision D111) */
+        get: operations["project_templates_api_v1_project_templates_get"];
+        put?: never;
+        post?: never;
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/projects/new": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        get?: never;
+        put?: never;
+        /**
+         * Create a project from a template and open it
+         * @description Copies the template into a new folder of the projects root (the document's name becomes the folder name) and opens it: the controller restarts at cycle 0 with it. 409 if the name exists or axes move (then nothing is created).
+         */
+        post: operations["new_project_api_v1_projects_new_post"];
         delete?: never;
         options?: never;
         head?: never;
@@ -2195,23 +2272,48 @@ export interface components {
              * @enum {string}
              */
             level: "major fault" | "partial fault" | "minor fault" | "observation" | "information";
-            /** Message */
+            /**
+             * Message
+             * @description The manual's event name (or a note for information events)
+             */
             message: string;
             /**
              * Cause
+             * @description The manual's cause of the error (appendix A-1)
              * @default
              */
             cause: string;
             /**
              * Correction
+             * @description The correction the manual suggests
              * @default
              */
             correction: string;
             /**
              * Detail
+             * @description Attached information: the input, the value, the 603Fh code …
              * @default
              */
             detail: string;
+            /**
+             * Source Kind
+             * @description What the event is about (decision D125)
+             * @default controller
+             * @enum {string}
+             */
+            source_kind: "axis" | "group" | "slave" | "instruction" | "controller";
+            /**
+             * Source Name
+             * @description The axis, axes group or slave name, or the instance label
+             * @default
+             */
+            source_name: string;
+            /**
+             * Instruction
+             * @description The instance involved ("fb 3 MC_MoveAbsolute"), if any
+             * @default
+             */
+            instruction: string;
         };
         /** FBCreate */
         FBCreate: {
@@ -3029,6 +3131,20 @@ export interface components {
              */
             mode: "realtime" | "fast" | "paused";
         };
+        /** NewProjectIn */
+        NewProjectIn: {
+            /**
+             * Name
+             * @description Folder name under the projects root: one folder name (no '/', '\' or '..'), not hidden, at most 64 characters (decision D110)
+             */
+            name: string;
+            /**
+             * Template
+             * @description Template name (GET /api/v1/project-templates): empty, single-axis, demo
+             * @default empty
+             */
+            template: string;
+        };
         /** ObjectDescription */
         ObjectDescription: {
             /** Index */
@@ -3070,7 +3186,7 @@ export interface components {
         OpenProjectIn: {
             /**
              * Name
-             * @description Folder name under the projects root
+             * @description Folder name under the projects root: one folder name (no '/', '\' or '..'), not hidden, at most 64 characters (decision D110)
              */
             name: string;
         };
@@ -3570,6 +3686,11 @@ export interface components {
          */
         Project: {
             /**
+             * $Schema
+             * @description URL or path of this document's JSON Schema, for editors (e.g. http://127.0.0.1:8000/api/v1/project/schema or a file written by `mcstudio schema`); kept as written, not used by the studio (docs/project-format.md, D113)
+             */
+            $schema?: string | null;
+            /**
              * Format
              * @default mcstudio-project
              * @constant
@@ -3632,6 +3753,36 @@ export interface components {
              * @default false
              */
             current: boolean;
+        };
+        /** ProjectTemplateOut */
+        ProjectTemplateOut: {
+            /**
+             * Name
+             * @description Template name for POST /api/v1/projects/new
+             */
+            name: string;
+            /**
+             * Title
+             * @description The template document's name
+             */
+            title: string;
+            /** Description */
+            description: string;
+            /**
+             * Axes
+             * @description Number of axes
+             */
+            axes: number;
+            /**
+             * Groups
+             * @description Number of axes groups
+             */
+            groups: number;
+            /**
+             * Cams
+             * @description Number of cam tables
+             */
+            cams: number;
         };
         /** RefEvent */
         RefEvent: {
@@ -3717,6 +3868,20 @@ export interface components {
              * @description Axes groups with Delta3 kinematics; empty when the project has none
              */
             robots: components["schemas"]["RobotOut"][];
+        };
+        /** SaveAsIn */
+        SaveAsIn: {
+            /**
+             * Name
+             * @description Folder name under the projects root: one folder name (no '/', '\' or '..'), not hidden, at most 64 characters (decision D110)
+             */
+            name: string;
+            /**
+             * Overwrite
+             * @description Replace an existing project of that name (its project.json is kept as the new folder's project.json.bak)
+             * @default false
+             */
+            overwrite: boolean;
         };
         /** SaveOut */
         SaveOut: {
@@ -4956,6 +5121,78 @@ export interface operations {
             };
         };
     };
+    save_project_as_api_v1_project_save_as_post: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        requestBody: {
+            content: {
+                "application/json": components["schemas"]["SaveAsIn"];
+            };
+        };
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["SaveOut"];
+                };
+            };
+            /** @description A project of that name exists (and overwrite is false) */
+            409: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description The name breaks the folder-name rules (decision D110) */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+        };
+    };
+    revert_project_api_v1_project_revert_post: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        requestBody?: never;
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["Project"];
+                };
+            };
+            /** @description Axes are moving */
+            409: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description The project on disk is corrupt (bad JSON, invalid fields, missing or corrupt cam data): `detail` lists every problem with its path in the file; the open project stays open and the files are not modified */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+        };
+    };
     project_schema_api_v1_project_schema_get: {
         parameters: {
             query?: never;
@@ -5034,14 +5271,70 @@ export interface operations {
                 };
                 content?: never;
             };
-            /** @description Validation Error */
+            /** @description The project on disk is corrupt (bad JSON, invalid fields, missing or corrupt cam data): `detail` lists every problem with its path in the file; the open project stays open and the files are not modified */
             422: {
                 headers: {
                     [name: string]: unknown;
                 };
-                content: {
-                    "application/json": components["schemas"]["HTTPValidationError"];
+                content?: never;
+            };
+        };
+    };
+    project_templates_api_v1_project_templates_get: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        requestBody?: never;
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
                 };
+                content: {
+                    "application/json": components["schemas"]["ProjectTemplateOut"][];
+                };
+            };
+        };
+    };
+    new_project_api_v1_projects_new_post: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        requestBody: {
+            content: {
+                "application/json": components["schemas"]["NewProjectIn"];
+            };
+        };
+        responses: {
+            /** @description Successful Response */
+            201: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["Project"];
+                };
+            };
+            /** @description The name exists, or axes are moving */
+            409: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description Bad name (D110) or unknown template */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
             };
         };
     };
@@ -5547,8 +5840,12 @@ export interface operations {
             query?: {
                 /** @description Only events with seq greater than this */
                 since?: number;
-                /** @description At most this many (the newest) */
+                /** @description At most this many (the newest, after filtering) */
                 limit?: number | null;
+                /** @description Only these levels (repeat the parameter for several) */
+                level?: ("major fault" | "partial fault" | "minor fault" | "observation" | "information")[] | null;
+                /** @description Only these source kinds (D125) */
+                source_kind?: ("axis" | "group" | "slave" | "instruction" | "controller")[] | null;
             };
             header?: never;
             path?: never;

@@ -349,7 +349,8 @@ def post_fault(body: FaultIn, studio: Studio = Depends(get_studio)) -> FaultOut:
                 net.drives.main_power[s.row] = kind == "main_power_on"
         c.events.add(cycle=c.cycle, time_s=c.time_s, source="fault injection", code="00000000",
                      level="information", message=f"{kind} on node {body.node_address}"
-                     + (f" (603Fh {body.code:04X}h)" if kind == "drive_fault" else ""))
+                     + (f" (603Fh {body.code:04X}h)" if kind == "drive_fault" else ""),
+                     source_kind="slave", source_name=s.name)
         return FaultOut(kind=kind, node_address=body.node_address, cycle=c.cycle, slave_state=ESM(s.state).name)
 
     return studio.runner.call(run)

@@ -2,6 +2,7 @@ from __future__ import annotations
 
 from fastapi import APIRouter, Depends, Query, Response
 
+from ...controller.events import Level, SourceKind
 from ...controller.mc.errors import ERRORS
 from ..deps import get_studio
 from ..models import ErrorInfo, EventOut
@@ -13,10 +14,19 @@ router = APIRouter(tags=["events"])
 @router.get("/events", response_model=list[EventOut], summary="Event log (oldest first)")
 def get_events(
     since: int = Query(0, ge=0, description="Only events with seq greater than this"),
-    limit: int | None = Query(None, ge=1, le=10000, description="At most this many (the newest)"),
+    limit: int | None = Query(None, ge=1, le=10000, description="At most this many (the newest, after filtering)"),
+    level: list[Level] | None = Query(None, description="Only these levels (repeat the parameter for several)"),
+    source_kind: list[SourceKind] | None = Query(None, description="Only these source kinds (D125)"),
     studio: Studio = Depends(get_studio),
 ) -> list[EventOut]:
-    return [EventOut(**e.as_dict()) for e in studio.controller.events.list(since_seq=since, limit=limit)]
+    events = studio.controller.events.list(since_seq=since)
+    if level:
+        events = [e for e in events if e.level in level]
+    if source_kind:
+        events = [e for e in events if e.source_kind in source_kind]
+    if limit:
+        events = events[-limit:]
+    return [EventOut(**e.as_dict()) for e in events]
 
 
 @router.delete("/events", status_code=204, summary="Clear the event log")

@@ -183,7 +183,8 @@ class AxesGroup(GroupMotion, GroupPlanning):
         (§4.1: a group error does not put the composition axes into error)."""
         if self.error_code == 0:
             self.error_code = code
-        self.m.log_error(code, axis=None, source=f"{self.name} / {source}" if source else self.name, detail=detail)
+        self.m.log_error(code, axis=None, source=f"{self.name} / {source}" if source else self.name, detail=detail,
+                         group=self.name)
         self.abort_all()
         self._set_state(G.ErrorStop)
         mv = self.motion
@@ -279,7 +280,7 @@ class AxesGroup(GroupMotion, GroupPlanning):
             self.error_code = 0
             self.reset_generation += 1
             self._set_state(self._rest_state())
-            self.m.log_info(None, f"axes group error reset on {self.name}")
+            self.m.log_info(None, f"axes group error reset on {self.name}", group=self.name)
         return True
 
 

@@ -205,7 +205,7 @@ class GroupPlanning:
                         seg = planner.position(p0=s0, v0=v0, a0=a0, target=length, velocity=velocity,
                                                acceleration=acc, deceleration=dec, jerk=jerk, v_end=v_end)
         except PlanningError as err:
-            self.m.log_error(0xFFFF, axis=None, source=self.name, detail=str(err))
+            self.m.log_error(0xFFFF, axis=None, source=self.name, detail=str(err), group=self.name)
             return 0xFFFF
         mv.seg = seg
         mv.t0 = t0

@@ -7,6 +7,7 @@ instruction, a profile end, a servo change, a supervision hit). `Axis` objects h
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
@@ -85,6 +86,7 @@ _CW_FOR_STATE = np.full(0x70, CW_SHUTDOWN, dtype=np.uint16)
 _CW_FOR_STATE[0x21] = CW_SWITCH_ON
 _CW_FOR_STATE[0x23] = CW_ENABLE
 _CW_FOR_STATE[0x27] = CW_ENABLE
+_FB_LABEL = re.compile(r"fb \d+ \w+")  # an instance label inside an event source (FunctionBlock.label)
 E_INTERNAL = 0xFFFF  # emulator-internal failure (never a manual code; see docs/decisions.md)
 
 
@@ -333,9 +335,21 @@ class MotionModule:
         out[r] = self.mod_min[r] + np.mod(x[r] - self.mod_min[r], self.mod_len[r])
         return out
 
-    def log_error(self, code: int, *, axis: Axis | None, source: str | None, detail: str = "") -> None:
+    def log_error(self, code: int, *, axis: Axis | None, source: str | None, detail: str = "",
+                  group: str | None = None) -> None:
+        """An error or observation in the event log. The source kind (D125) is the axis, else the axes `group`, else
+        the instruction instance named in `source` (MC common errors), else the MC module."""
         d = E.describe(code)
         where = axis.name if axis else "MC common"
+        fb = _FB_LABEL.search(source or "")
+        if axis is not None:
+            kind, name = "axis", axis.name
+        elif group is not None:
+            kind, name = "group", group
+        elif fb is not None:
+            kind, name = "instruction", fb.group(0)
+        else:
+            kind, name = "controller", "MC common"
         self.events.add(
             cycle=self.cycle,
             time_s=self.cycle * self.period_s,
@@ -346,11 +360,16 @@ class MotionModule:
             cause=d.cause if d else "",
             correction=d.correction if d else "",
             detail=detail,
+            source_kind=kind,  # type: ignore[arg-type]
+            source_name=name,
+            instruction=fb.group(0) if fb else "",
         )
 
-    def log_info(self, axis: Axis | None, message: str) -> None:
+    def log_info(self, axis: Axis | None, message: str, *, group: str | None = None) -> None:
+        kind, name = ("axis", axis.name) if axis else ("group", group) if group else ("controller", "MC")
         self.events.add(cycle=self.cycle, time_s=self.cycle * self.period_s, source=axis.name if axis else "MC",
-                        code="00000000", level="information", message=message)
+                        code="00000000", level="information", message=message, source_kind=kind,  # type: ignore[arg-type]
+                        source_name=name)
 
     # ------------------------------------------------------------------ torque control
     def _start_torque(self, i: int, job: Any, start_cycle: int | None) -> None:

@@ -139,7 +139,7 @@ class MC_SetKinTransform(_GroupOneShot):
         group.workspace_check = bool(self.inp["EnableWorkspace"])
         group.kin_from_cycle = m.cycle + 2  # Done shows next period; usable the period after (§9.1)
         m.log_info(None, f"{group.name}: Delta3 kinematics set (Rf {p.Rf}, Lf {p.Lf}, Rm {p.Rm}, Lm {p.Lm} mm, "
-                         f"θ {p.theta}°)")
+                         f"θ {p.theta}°)", group=group.name)
         self.done_next()
 
     def _init_error(self, group: AxesGroup, detail: str) -> None:
@@ -232,7 +232,8 @@ class MC_DefineCoordSystem(_GroupOneShot):
         assert pose is not None
         ucs = UserCoordSystem.from_pose(pose)
         group.coord_systems[csid] = ucs
-        group.m.log_info(None, f"{group.name}: user coordinate system {csid} defined, pose {ucs.pose()}")
+        group.m.log_info(None, f"{group.name}: user coordinate system {csid} defined, pose {ucs.pose()}",
+                         group=group.name)
         self.done_next()
 
 

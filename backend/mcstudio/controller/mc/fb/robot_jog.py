@@ -343,7 +343,8 @@ class MC_RobotJog(_GroupRef, FunctionBlock):
             self.mc.events.add(cycle=self.mc.cycle, time_s=self.mc.cycle * T, source=f"{group.name} / {self.label}",
                                code=f"{warning:04X}0000", level="observation",
                                message="Cartesian jog stopped at the workspace boundary" if warning == E_COMMAND_OUTSIDE
-                               else "Go-to target outside the workspace: not moving")
+                               else "Go-to target outside the workspace: not moving",
+                               source_kind="group", source_name=group.name, instruction=self.label)
         self._warned = warning
         o["AtBoundary"] = at_boundary
         o["WarningID"] = warning
