@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from typing import Any, Literal
+from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, StrictBool, StrictFloat, StrictInt, StrictStr
+from pydantic import AfterValidator, BaseModel, ConfigDict, Field, StrictBool, StrictFloat, StrictInt, StrictStr
 
 from ..project.models import AxisConfig
 
@@ -264,7 +264,19 @@ class ProjectInfo(_Model):
 
 
 class OpenProjectIn(_Model):
-    name: str = Field(min_length=1, max_length=100, description="Folder name under the projects root")
+def _project_name(name: str) -> str:
+    from ..project.folders import check_project_name
+
+    return check_project_name(name)
+
+
+ProjectName = Annotated[str, AfterValidator(_project_name), Field(
+    min_length=1, max_length=64,
+    description="Folder name under the projects root: one folder name (no '/', '\\' or '..'), not hidden, at most "
+    "64 characters (decision D110)")]
+
+
+    name: ProjectName
 
 
 class SaveOut(_Model):
@@ -273,6 +285,27 @@ class SaveOut(_Model):
 
 
 class VizInfo(_Model):
+class SaveAsIn(_Model):
+    name: ProjectName
+    overwrite: bool = Field(False, description="Replace an existing project of that name (its project.json is kept "
+                            "as the new folder's project.json.bak)")
+
+
+class NewProjectIn(_Model):
+    name: ProjectName
+    template: str = Field("empty", min_length=1, max_length=64,
+                          description="Template name (GET /api/v1/project-templates): empty, single-axis, demo")
+
+
+class ProjectTemplateOut(_Model):
+    name: str = Field(description="Template name for POST /api/v1/projects/new")
+    title: str = Field(description="The template document's name")
+    description: str
+    axes: int = Field(description="Number of axes")
+    groups: int = Field(description="Number of axes groups")
+    cams: int = Field(description="Number of cam tables")
+
+
     enabled: bool
     port: int | None = None
     host: str | None = None

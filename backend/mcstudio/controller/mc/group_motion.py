@@ -216,6 +216,18 @@ class GroupMotion:
         self._set_state(self._rest_state())
         self.m.moving_groups.pop(self.number, None)
 
+    def end_sync(self, job: Job, *, aborted: bool = False) -> None:
+        """End a synchronous job (`JobKind.GROUP_SYNC`) on behalf of its owner — MC_RobotJog once it has stopped
+        after Enable↓, or when its instance is deleted (decision D90): the job is Done (CommandAborted with
+        `aborted`), the command holds where it is and the group goes back to its rest state (Standby, or Stopping /
+        Disabled / ErrorStop as it stands). A job that already ended (aborted by another instruction, a stop or an
+        error) is left alone."""
+        if not job.running:
+            return
+        self._end_job(job, JobStatus.ABORTED if aborted else JobStatus.DONE)
+        self.halt()
+        self._set_state(self._rest_state())
+
     def _step_sync(self, job: Job, T: float) -> None:
         """MC_GroupSyncMoveAbsolute: the program's target every period, each axis limited to its Maximum Velocity
         (the command saturates, §4.12); InPosition when the target is unchanged and every axis is within its
