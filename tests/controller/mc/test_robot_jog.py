@@ -189,3 +189,22 @@ def test_jog_in_a_ucs_follows_its_axes() -> None:
     bad = _jog(c, CoordSystem=3, CSID=5, Enable=True)
     c.step(1)
     assert bad.Error and bad.out["ErrorID"] == 0x570B
+
+
+def test_deleting_a_running_jog_ends_its_job_and_holds_the_robot() -> None:
+    """D90: deleting the instance while it moves (the studio's lease expiring on a crashed page ends up here, too)
+    ends the group's synchronous job through the group's public `end_sync`: the command holds where it is, the group
+    is Standby at once and takes the next instruction."""
+    c = _robot_at()
+    g = c.mc.groups_by_name[GRP]
+    jog = _jog(c, Direction=[1.0, 0.0, 0.0], Enable=True)
+    c.step(100)
+    assert g.state == GroupState.Moving and jog.CommandVelocity > 0
+    c.delete_fb(jog.id)
+    held = [float(c.mc.cmd_pos[i]) for i in g.idx]
+    assert g.state == GroupState.Standby and g.current is None
+    c.step(5)
+    assert [float(c.mc.cmd_pos[i]) for i in g.idx] == held
+    again = _jog(c, Direction=[0.0, 1.0, 0.0], Enable=True)
+    c.step(50)
+    assert again.Active and not again.Error and g.state == GroupState.Moving

@@ -5,8 +5,9 @@ The NJ has no Cartesian jog; the robot manual's test run moves the axes one by o
 every period: a command point in the MCS moves along a direction at the jog speed (with a ramp), is checked against
 the workspace and the axes' limits, mapped with the one-point inverse kinematics (`kinematics/point.py`) and
 commanded to the three axes through the group the way MC_GroupSyncMoveAbsolute does (a `GROUP_SYNC` job whose
-per-period target this instruction writes; `group.py` `_step_sync`). The TCP therefore moves on a straight line in
-the Cartesian frame.
+per-period target this instruction writes; `group_motion.py` `_step_sync`). The TCP therefore moves on a straight
+line in the Cartesian frame. It uses only the group's public interface: `check_start`, `member_error`, `point`,
+`submit`, `coord_systems` and `end_sync` (which ends its job after the stop, or on deletion).
 
 * **Mode 0 (jog)**: while Enable is TRUE the point moves along `Direction` (X, Y, Z of the MCS or of a UCS,
   normalised) at `Velocity`, accelerating and decelerating at `Acceleration` (0 = step). Enable FALSE decelerates to
@@ -37,7 +38,7 @@ from typing import Any
 
 from .. import errors as E
 from ..group import E_ILLEGAL_GROUP, AxesGroup
-from ..jobs import Job, JobKind, JobStatus
+from ..jobs import Job, JobKind
 from ..kinematics import Delta3Params, Delta3Workspace, Status, contains_point, forward_point, inverse_point
 from ..kinematics.codes import E_COMMAND_OUTSIDE, E_CSID, E_CURRENT_OUTSIDE, E_KIN_CALC, E_TARGET_OUTSIDE
 from .admin import I_ENABLE
@@ -68,12 +69,6 @@ class _SyncTarget:
 
     def sync_job(self) -> None:
         self.fb.wake()
-
-
-def _ucs_of(group: AxesGroup, csid: int) -> Any:
-    """The user coordinate system CSID defined on the group (MC_DefineCoordSystem), or None."""
-    systems = getattr(group, "coord_systems", None) or getattr(group, "ucs", None) or {}
-    return systems.get(csid) if isinstance(systems, dict) else None
 
 
 class MC_RobotJog(_GroupRef, FunctionBlock):
@@ -189,7 +184,7 @@ class MC_RobotJog(_GroupRef, FunctionBlock):
             return
         self._rot, self._origin = None, (0.0, 0.0, 0.0)
         if i["CoordSystem"] == UCS:
-            ucs = _ucs_of(group, int(i["CSID"]))
+            ucs = group.coord_systems.get(int(i["CSID"]))  # MC_DefineCoordSystem (volatile, D83)
             if ucs is None:
                 self.fail(E_CSID, group)
                 return
@@ -354,17 +349,13 @@ class MC_RobotJog(_GroupRef, FunctionBlock):
         o["InPosition"] = at_goal and job.in_velocity
         if not en and s == 0.0:
             # stopped after Enable fell: end the synchronous job, the group is Standby again
-            group._end_job(job, JobStatus.DONE)
-            group.halt()
-            group._set_state(group._rest_state())
+            group.end_sync(job)
             self._release(aborted=False)
 
     def on_delete(self) -> None:
         job, group = self._job, self._group
-        if job is not None and group is not None and job.running:
-            group._end_job(job, JobStatus.ABORTED)
-            group.halt()
-            group._set_state(group._rest_state())
+        if job is not None and group is not None:
+            group.end_sync(job, aborted=True)
 
 
 ROBOT_JOG_CLASSES = (MC_RobotJog,)
