@@ -263,7 +263,6 @@ class ProjectInfo(_Model):
     current: bool = False
 
 
-class OpenProjectIn(_Model):
 def _project_name(name: str) -> str:
     from ..project.folders import check_project_name
 
@@ -276,6 +275,7 @@ ProjectName = Annotated[str, AfterValidator(_project_name), Field(
     "64 characters (decision D110)")]
 
 
+class OpenProjectIn(_Model):
     name: ProjectName
 
 
@@ -284,7 +284,6 @@ class SaveOut(_Model):
     saved: bool = True
 
 
-class VizInfo(_Model):
 class SaveAsIn(_Model):
     name: ProjectName
     overwrite: bool = Field(False, description="Replace an existing project of that name (its project.json is kept "
@@ -306,6 +305,7 @@ class ProjectTemplateOut(_Model):
     cams: int = Field(description="Number of cam tables")
 
 
+class VizInfo(_Model):
     enabled: bool
     port: int | None = None
     host: str | None = None

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import shutil
 import threading
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -17,8 +18,15 @@ from ..controller.mc.module import drv_status
 from ..controller.runner import Runner
 from ..fieldbus.library import DeviceLibrary
 from ..project.cams import load_cam_tables, sync_cam_files, tables_for, write_cam_file
+from ..project.folders import (
+    Template,
+    build_project_folder,
+    copy_project_files,
+    copy_template,
+    resolve_in_root,
+)
 from ..project.io import ProjectError, dump_project, load_project, save_project
-from ..project.models import Project
+from ..project.models import PROJECT_FILE, Project
 from .models import AxisSummary, ControllerStatus, FBOut
 
 if TYPE_CHECKING:
@@ -52,11 +60,13 @@ class Studio:
     def attach(self, controller: Controller) -> None:
         """Connect a controller to the project folder: MC_SaveCamTable writes `cams/<name>.csv` (it runs in a
         background thread, decision D44) and the saved data become the table's downloaded value."""
-        folder = self.project_dir
-        if folder is None:
+        if self.project_dir is None:
             return
 
         def save_cam(name: str, table: CamTable) -> None:
+            folder = self.project_dir  # at the time of the save: save-as moves the project to another folder
+            if folder is None:
+                return
             write_cam_file(folder, name, table)
             controller.cams[name] = table
 
@@ -169,19 +179,59 @@ class Studio:
         if self.project_dir is None:
             raise ConflictError("this studio was started without a project folder; nothing to save to")
         with self.lock:
-            sync_cam_files(self.project_dir, self.project, self.controller.cams)  # the data before their definitions
-            path = save_project(self.project_dir, self.project)
+            try:
+                sync_cam_files(self.project_dir, self.project, self.controller.cams)  # the data before the definitions
+                path = save_project(self.project_dir, self.project)
+            except OSError as err:
+                raise ConflictError(f"the project could not be written to {self.project_dir}: {err}") from None
             self.saved_text = dump_project(self.project)
         return path
+
+    def _root(self) -> Path:
+        if self.projects_root is None:
+            raise ConflictError("no projects folder configured (start the studio with --projects-root)")
+        return self.projects_root
+
+    def save_as(self, name: str, *, overwrite: bool = False) -> Path:
+        """Save the running project (with its unsaved changes) as a new folder `name` of the projects root, with the
+        current folder's cam data and ESI files, and continue in it (D112). The current folder is not changed."""
+        root = self._root()
+        target = resolve_in_root(root, name)
+        if self.project_dir is not None and target == self.project_dir.resolve():
+            if not overwrite:
+                raise FileExistsError(f"{name!r} is the open project; use Save, or overwrite")
+            return self.save()
+        project, tables, source = self.project, dict(self.controller.cams), self.project_dir
+
+        def fill(staging: Path) -> None:
+            copy_project_files(source, staging)
+            sync_cam_files(staging, project, tables)
+            save_project(staging, project)
+
+        with self.lock:
+            try:
+                folder = build_project_folder(root, name, fill, overwrite=overwrite)
+            except (FileExistsError, ValueError):
+                raise
+            except OSError as err:
+                raise ConflictError(f"the project could not be written to {root / name}: {err}") from None
+            self.project_dir = folder
+            self.library.folder = folder
+            self.saved_text = dump_project(project)
+        return folder / PROJECT_FILE
 
     def list_projects(self) -> list[dict[str, Any]]:
         root = self.projects_root
         if root is None or not root.is_dir():
             return []
         out = []
-        for d in sorted(p for p in root.iterdir() if p.is_dir() and (p / "project.json").is_file()):
+        base = root.resolve()
+        folders = (p for p in root.iterdir() if not p.name.startswith(".") and p.is_dir()  # hidden: staging (D112)
+                   and p.resolve().parent == base and (p / "project.json").is_file())  # no links out of the root
+        for d in sorted(folders):
             try:
                 proj = load_project(d)
+                load_cam_tables(proj, d)
                 out.append({"name": d.name, "title": proj.name, "path": str(d), "valid": True, "error": None})
             except ProjectError as err:
                 out.append({"name": d.name, "title": d.name, "path": str(d), "valid": False, "error": str(err)})
@@ -189,18 +239,15 @@ class Studio:
         return out
 
     def resolve_project_name(self, name: str) -> Path:
-        root = self.projects_root
-        if root is None:
-            raise ConflictError("no projects folder configured")
-        if "/" in name or "\\" in name or name in (".", "..") or name.startswith("."):
-            raise ValueError("a project name is a folder name inside the projects folder, without slashes")
-        folder = (root / name).resolve()
-        if folder.parent != root.resolve():
-            raise ValueError("project name escapes the projects folder")
-        return folder
+        """The folder of a project of the projects root (ValueError naming the rule a bad name breaks, D110)."""
+        return resolve_in_root(self._root(), name)
 
     def open_project(self, name: str) -> Project:
-        folder = self.resolve_project_name(name)
+        return self.open_folder(self.resolve_project_name(name))
+
+    def open_folder(self, folder: Path) -> Project:
+        """Load a project folder and restart the controller with it. Nothing is written: a corrupt project raises
+        ProjectError (every problem with its path) and the running project stays open; 409 while an axis moves."""
         library = DeviceLibrary(folder)
         project = load_project(folder, library)
         cams = load_cam_tables(project, folder)
@@ -213,3 +260,32 @@ class Studio:
         self.project_dir = folder
         self.saved_text = dump_project(project)
         return project
+
+    def revert(self) -> Project:
+        """Reload the project from its folder, discarding the unsaved changes (like opening it again)."""
+        if self.project_dir is None:
+            raise ConflictError("this studio was started without a project folder; there is nothing to revert to")
+        return self.open_folder(self.project_dir)
+
+    def new_project(self, name: str, template: Template) -> Project:
+        """Create project `name` from a template (the document's name becomes `name`) and open it. If it cannot be
+        opened (409: axes move) the new folder is removed again: nothing else was touched."""
+        root = self._root()
+        tpl_project = load_project(template.folder)
+
+        def fill(staging: Path) -> None:
+            copy_template(template, staging)
+            save_project(staging, tpl_project.model_copy(update={"name": name}))
+            (staging / (PROJECT_FILE + ".bak")).unlink(missing_ok=True)
+
+        try:
+            folder = build_project_folder(root, name, fill)
+        except (FileExistsError, ValueError):
+            raise
+        except OSError as err:
+            raise ConflictError(f"the project could not be created in {root}: {err}") from None
+        try:
+            return self.open_folder(folder)
+        except BaseException:
+            shutil.rmtree(folder, ignore_errors=True)
+            raise

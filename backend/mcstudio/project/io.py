@@ -1,9 +1,10 @@
 """Load, validate and save project folders.
 
-A project is a folder holding `project.json` (and, in later versions, cam data files). Loading reports every problem
-with the JSON path of the field it concerns; saving is atomic: the new document is written to a temporary file in the
-same folder, flushed and fsynced, the previous version is kept as `project.json.bak`, and the new file replaces the old
-one with a single `rename`, so a crash leaves either the old or the new project, never a torn file.
+A project is a folder holding `project.json`, the cam data files `cams/*.csv` and imported ESI files `esi/*.xml`.
+Loading reports every problem with the JSON path of the field it concerns and never writes; saving is atomic: the new
+document is written to a temporary file in the same folder, flushed and fsynced, the previous version is kept as
+`project.json.bak`, and the new file replaces the old one with a single `rename`, so a crash leaves either the old or
+the new project, never a torn file (docs/project-format.md "Saving").
 """
 
 from __future__ import annotations
@@ -87,7 +88,10 @@ def load_project(folder: str | os.PathLike[str], library: DeviceLibrary | None =
         raise ProjectError(f"{folder} is not a project folder (it does not exist or is not a directory)")
     if not path.is_file():
         raise ProjectError(f"{folder} holds no {PROJECT_FILE}; create one with 'mcstudio new' or copy projects/demo")
-    raw = path.read_bytes()
+    try:
+        raw = path.read_bytes()
+    except OSError as err:
+        raise ProjectError(f"{path} cannot be read ({err.strerror or err})") from None
     try:
         data = json.loads(raw.decode("utf-8"))
     except UnicodeDecodeError as err:
@@ -101,7 +105,10 @@ def load_project(folder: str | os.PathLike[str], library: DeviceLibrary | None =
 
 
 def dump_project(project: Project) -> str:
-    return json.dumps(project.model_dump(mode="json"), indent=2, ensure_ascii=False) + "\n"
+    data = project.model_dump(mode="json", by_alias=True)
+    if data.get("$schema") is None:  # written only when the document names its schema (for editors, D113)
+        data.pop("$schema", None)
+    return json.dumps(data, indent=2, ensure_ascii=False) + "\n"
 
 
 def _fsync_dir(folder: Path) -> None:
@@ -115,24 +122,64 @@ def _fsync_dir(folder: Path) -> None:
         os.close(fd)
 
 
+WRITE_CHUNK = 1 << 16
+
+
+def _temp_prefix(path: Path) -> str:
+    return f".{path.name}."
+
+
+def remove_stale_temp_files(path: Path) -> list[Path]:
+    """Remove the temporary files a killed save of `path` left behind (`.<name>.<pid>.<random>.tmp` of another
+    process). Files of this process are left alone: another thread may be writing them. (A left-over
+    `.<name>.bak.tmp` is replaced by the next save.)"""
+    removed = []
+    prefix = _temp_prefix(path)
+    mine = f"{prefix}{os.getpid()}."
+    try:
+        entries = list(path.parent.iterdir())
+    except OSError:
+        return removed
+    for entry in entries:
+        name = entry.name
+        pid = name[len(prefix):].split(".", 1)[0]
+        if not (name.startswith(prefix) and name.endswith(".tmp") and pid.isdigit()) or name.startswith(mine):
+            continue
+        try:
+            entry.unlink()
+            removed.append(entry)
+        except OSError:
+            pass
+    return removed
+
+
 def atomic_write(path: Path, text: str | bytes, *, keep_backup: bool = True) -> None:
     """Write `text` (UTF-8) or bytes to `path` atomically (temp file + fsync + rename), keeping the old file as
-    `<path>.bak`."""
+    `<path>.bak`.
+
+    Steps (a kill between any two leaves either the old or the new file at `path`, tested by
+    tests/project/test_kill_save.py): write `.<name>.<pid>.<random>.tmp` in the same folder and fsync it; hard-link the
+    current file as the backup; rename the temporary file over `path`; fsync the folder."""
     folder = path.parent
     folder.mkdir(parents=True, exist_ok=True)
-    fd, tmp_name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
+    remove_stale_temp_files(path)
+    fd, tmp_name = tempfile.mkstemp(prefix=f"{_temp_prefix(path)}{os.getpid()}.", suffix=".tmp", dir=folder)
     tmp = Path(tmp_name)
     try:
-        data = text.encode("utf-8") if isinstance(text, str) else text
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-            fh.flush()
-            os.fsync(fh.fileno())
+        data = memoryview(text.encode("utf-8") if isinstance(text, str) else text)
+        try:
+            for start in range(0, len(data), WRITE_CHUNK):
+                chunk = data[start:start + WRITE_CHUNK]
+                while chunk:
+                    chunk = chunk[os.write(fd, chunk):]
+            os.fsync(fd)
+        finally:
+            os.close(fd)
         if keep_backup and path.exists():
             # Hard-link the current file to a temporary backup name, then rename it over the old backup: at no moment
-            # is there no project.json.
+            # is there no project.json, and the backup is always a complete earlier version.
             bak = path.with_name(path.name + BACKUP_SUFFIX)
-            bak_tmp = path.with_name(f".{path.name}.bak.tmp")
+            bak_tmp = path.with_name(f"{_temp_prefix(path)}bak.tmp")
             bak_tmp.unlink(missing_ok=True)
             os.link(path, bak_tmp)
             os.replace(bak_tmp, bak)

@@ -456,6 +456,13 @@ class EtherCATConfig(_Strict):
 class Project(_Strict):
     """The project document: one JSON file in the project folder."""
 
+    model_config = ConfigDict(extra="forbid", validate_assignment=True, allow_inf_nan=False, populate_by_name=True)
+
+    schema_ref: str | None = Field(
+        None, alias="$schema", max_length=2000,
+        description="URL or path of this document's JSON Schema, for editors (e.g. "
+        "http://127.0.0.1:8000/api/v1/project/schema or a file written by `mcstudio schema`); kept as written, "
+        "not used by the studio (docs/project-format.md, D113)")
     format: Literal["mcstudio-project"] = "mcstudio-project"
     schema_version: Literal[1] = Field(SCHEMA_VERSION, description="Version of this document's schema")
     name: str = Field(min_length=1, max_length=100)
