@@ -20,7 +20,7 @@ run: setup
 
 test: setup chromium
 	$(PY) -m ruff check backend tests benchmarks
-	$(PY) -m mcstudio validate projects/*/
+	$(PY) -m mcstudio validate projects/*/ backend/mcstudio/project/templates/*/
 	$(MAKE) --no-print-directory check-api
 	$(PY) -m pytest
 
