@@ -1,11 +1,11 @@
 /**
  * The controller's event log: loaded with GET /api/v1/events, then extended by the WebSocket snapshots.
- * New faults also pop a notification.
+ * New faults also pop a notification (lib/notifyEvents.tsx).
  */
-import { notifications } from "@mantine/notifications";
 import { api, unwrap } from "../api/client";
 import type { EventOut } from "../api/types";
 import { isFault } from "../lib/format";
+import { notifyFaults } from "../lib/notifyEvents";
 import { createStore } from "./createStore";
 import { onEpoch, onReconnect, onWsEvents } from "./live";
 
@@ -33,17 +33,14 @@ function merge(incoming: EventOut[], notify: boolean): void {
   if (events.length > MAX_EVENTS) events.splice(0, events.length - MAX_EVENTS);
   const lastSeq = Math.max(st.lastSeq, ...fresh.map((e) => e.seq));
   eventsStore.set({ status: "ready", events, lastSeq });
-  if (notify) {
-    const faults = fresh.filter((x) => x.seq > st.lastSeq && isFault(x.level));
-    for (const e of faults.slice(-3)) {
-      notifications.show({
-        color: e.level === "minor fault" ? "orange" : "red",
-        title: `${e.level[0].toUpperCase()}${e.level.slice(1)} · ${e.code}`,
-        message: `${e.source}: ${e.message}`,
-        autoClose: 6000,
-      });
-    }
-  }
+  if (notify) notifyFaults(fresh.filter((x) => x.seq > st.lastSeq && isFault(x.level)));
+}
+
+/** "Show in event log": the event the log should reveal (a new nonce each request, so the same seq works twice). */
+export const eventFocusStore = createStore<{ seq: number; nonce: number } | null>(null);
+
+export function focusEvent(seq: number): void {
+  eventFocusStore.set({ seq, nonce: (eventFocusStore.get()?.nonce ?? 0) + 1 });
 }
 
 async function fetchSince(since: number, notify: boolean): Promise<void> {

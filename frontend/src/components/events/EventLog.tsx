@@ -1,12 +1,45 @@
-import { ActionIcon, Badge, Box, Button, Center, Chip, Group, Loader, ScrollArea, Table, Text, Tooltip } from "@mantine/core";
+import {
+  ActionIcon,
+  Badge,
+  Box,
+  Button,
+  Center,
+  Chip,
+  CloseButton,
+  Group,
+  Loader,
+  ScrollArea,
+  Select,
+  Table,
+  Text,
+  TextInput,
+  Tooltip,
+} from "@mantine/core";
 import { useLocalStorage } from "@mantine/hooks";
-import { IconChevronDown, IconChevronRight, IconChevronUp, IconTrash } from "@tabler/icons-react";
-import { Fragment, type PointerEvent as ReactPointerEvent, useMemo, useRef, useState } from "react";
+import { IconChevronDown, IconChevronRight, IconChevronUp, IconSearch, IconTrash } from "@tabler/icons-react";
+import { Fragment, type PointerEvent as ReactPointerEvent, useEffect, useMemo, useRef, useState } from "react";
 import type { EventLevel, EventOut } from "../../api/types";
 import { fixed, levelColor } from "../../lib/format";
 import { notifyError } from "../../lib/notify";
 import { useStore } from "../../store/createStore";
-import { clearEvents, eventsStore } from "../../store/events";
+import { clearEvents, eventFocusStore, eventsStore } from "../../store/events";
+
+type SourceKind = EventOut["source_kind"];
+const KINDS: { value: SourceKind; label: string; color: string }[] = [
+  { value: "axis", label: "Axis", color: "blue" },
+  { value: "group", label: "Group", color: "grape" },
+  { value: "slave", label: "Slave", color: "teal" },
+  { value: "instruction", label: "Instruction", color: "indigo" },
+  { value: "controller", label: "Controller", color: "gray" },
+];
+const KIND_OF = Object.fromEntries(KINDS.map((k) => [k.value, k]));
+
+/** Case-insensitive match of every word of `q` against what a row shows (and its cause/correction). */
+function matches(e: EventOut, words: string[]): boolean {
+  if (!words.length) return true;
+  const hay = `${e.code} ${e.level} ${e.source} ${e.source_name} ${e.instruction} ${e.message} ${e.cause} ${e.correction} ${e.detail}`.toLowerCase();
+  return words.every((w) => hay.includes(w));
+}
 
 const LEVELS: { value: EventLevel; label: string }[] = [
   { value: "major fault", label: "Major" },
@@ -19,11 +52,14 @@ const ALL_LEVELS = LEVELS.map((l) => l.value as string);
 const MIN_H = 90;
 const MAX_SHOWN = 500;
 
-function EventRow({ e, open, onToggle }: { e: EventOut; open: boolean; onToggle: () => void }) {
+function EventRow({ e, open, focused, onToggle }: { e: EventOut; open: boolean; focused: boolean; onToggle: () => void }) {
   const hasMore = Boolean(e.cause || e.correction || e.detail);
+  const kind = KIND_OF[e.source_kind] ?? KIND_OF.controller;
   return (
     <Fragment>
-      <Table.Tr className="event-row" onClick={onToggle} data-testid={`event-${e.seq}`} data-level={e.level}>
+      <Table.Tr className="event-row" onClick={onToggle} data-testid={`event-${e.seq}`} data-level={e.level}
+        data-source-kind={e.source_kind} data-focused={focused ? "true" : undefined}
+        bg={focused ? "yellow.0" : undefined}>
         <Table.Td w={22} px={4}>
           {hasMore ? open ? <IconChevronDown size={12} /> : <IconChevronRight size={12} /> : null}
         </Table.Td>
@@ -35,16 +71,31 @@ function EventRow({ e, open, onToggle }: { e: EventOut; open: boolean; onToggle:
             {e.level}
           </Badge>
         </Table.Td>
-        <Table.Td style={{ whiteSpace: "nowrap" }}>{e.source}</Table.Td>
+        <Table.Td style={{ whiteSpace: "nowrap" }} title={e.source}>
+          <Group gap={6} wrap="nowrap">
+            <Badge size="xs" variant="outline" color={kind.color} w={74} style={{ textTransform: "none", flex: "none" }}
+              data-testid="event-source-kind">
+              {kind.label}
+            </Badge>
+            <Text size="xs" span>
+              {e.source_name || e.source}
+            </Text>
+          </Group>
+        </Table.Td>
         <Table.Td className="num" style={{ textAlign: "left" }}>
           {e.code}
         </Table.Td>
         <Table.Td title={hasMore ? [e.cause && `Cause: ${e.cause}`, e.correction && `Correction: ${e.correction}`].filter(Boolean).join("\n") : undefined}>
           {e.message}
+          {e.instruction && e.instruction !== e.source_name && (
+            <Text span size="xs" c="dimmed" ml={6}>
+              · {e.instruction}
+            </Text>
+          )}
         </Table.Td>
       </Table.Tr>
       {open && hasMore && (
-        <Table.Tr className="event-detail">
+        <Table.Tr className="event-detail" data-testid={`event-detail-${e.seq}`}>
           <Table.Td />
           <Table.Td colSpan={6}>
             {e.cause && (
@@ -75,17 +126,45 @@ export function EventLog() {
   const [height, setHeight] = useLocalStorage({ key: "mcstudio.eventlog.height", defaultValue: 170 });
   const [collapsed, setCollapsed] = useLocalStorage({ key: "mcstudio.eventlog.collapsed", defaultValue: false });
   const [levels, setLevels] = useState<string[]>(ALL_LEVELS);
+  const [kind, setKind] = useState<string | null>(null);
+  const [query, setQuery] = useState("");
   const [openSeq, setOpenSeq] = useState<number | null>(null);
+  const [focusSeq, setFocusSeq] = useState<number | null>(null);
+  const focus = useStore(eventFocusStore, (s) => s);
+  const scrollTo = useRef<number | null>(null);
+
+  // "Show in event log" from a notification: open the log, clear the filters, unfold and highlight the event
+  useEffect(() => {
+    if (!focus) return;
+    setCollapsed(false);
+    setLevels(ALL_LEVELS);
+    setKind(null);
+    setQuery("");
+    setOpenSeq(focus.seq);
+    setFocusSeq(focus.seq);
+    scrollTo.current = focus.seq;
+  }, [focus, setCollapsed]);
+  useEffect(() => {
+    if (scrollTo.current === null) return;
+    const row = document.querySelector(`[data-testid="event-${scrollTo.current}"]`);
+    if (row) {
+      row.scrollIntoView({ block: "nearest" });
+      scrollTo.current = null;
+    }
+  });
   const [dragging, setDragging] = useState(false);
   const drag = useRef<{ y: number; h: number } | null>(null);
 
   const shown = useMemo(() => {
+    const words = query.toLowerCase().split(/\s+/).filter(Boolean);
     const out: EventOut[] = [];
     for (let i = events.length - 1; i >= 0 && out.length < MAX_SHOWN; i--) {
-      if (levels.includes(events[i].level)) out.push(events[i]);
+      const e = events[i];
+      if (levels.includes(e.level) && (kind === null || e.source_kind === kind) && matches(e, words)) out.push(e);
     }
     return out;
-  }, [events, levels]);
+  }, [events, levels, kind, query]);
+  const filtered = levels.length !== ALL_LEVELS.length || kind !== null || query.trim() !== "";
 
   const faults = useMemo(() => events.filter((e) => e.level.endsWith("fault")).length, [events]);
 
@@ -158,6 +237,19 @@ export function EventLog() {
         )}
         <Box style={{ flex: 1 }} />
         {!collapsed && (
+          <TextInput size="xs" w={170} placeholder="Filter text, code…" value={query} data-testid="event-search"
+            aria-label="Filter the event log by text" leftSection={<IconSearch size={12} />}
+            onChange={(ev) => setQuery(ev.currentTarget.value)}
+            rightSection={query ? <CloseButton size="xs" aria-label="Clear the text filter" onClick={() => setQuery("")} /> : null}
+            styles={{ input: { height: 22, minHeight: 22 } }} />
+        )}
+        {!collapsed && (
+          <Select size="xs" w={124} placeholder="All sources" value={kind} onChange={setKind} clearable
+            data={KINDS.map((k) => ({ value: k.value, label: k.label }))} data-testid="event-source-filter"
+            aria-label="Filter the event log by source kind" comboboxProps={{ withinPortal: true }}
+            styles={{ input: { height: 22, minHeight: 22 } }} />
+        )}
+        {!collapsed && (
           <Chip.Group multiple value={levels} onChange={setLevels}>
             <Group gap={4} wrap="nowrap" data-testid="event-level-filter">
               {LEVELS.map((l) => (
@@ -182,7 +274,11 @@ export function EventLog() {
           ) : shown.length === 0 ? (
             <Center h={height - 10}>
               <Text size="xs" c="dimmed">
-                {status === "error" ? "Cannot load the event log." : events.length ? "No events of the selected levels." : "No events."}
+                {status === "error"
+                  ? "Cannot load the event log: check that the studio server is running."
+                  : events.length && filtered
+                    ? "No event matches the filters: widen the levels, the source or the text filter."
+                    : "No events yet. Errors, warnings and notes of the controller appear here as they happen."}
               </Text>
             </Center>
           ) : (
@@ -197,14 +293,14 @@ export function EventLog() {
                     Cycle
                   </Table.Th>
                   <Table.Th w={110}>Level</Table.Th>
-                  <Table.Th w={220}>Source</Table.Th>
+                  <Table.Th w={240}>Source</Table.Th>
                   <Table.Th w={86}>Code</Table.Th>
                   <Table.Th>Message</Table.Th>
                 </Table.Tr>
               </Table.Thead>
               <Table.Tbody>
                 {shown.map((e) => (
-                  <EventRow key={e.seq} e={e} open={openSeq === e.seq}
+                  <EventRow key={e.seq} e={e} open={openSeq === e.seq} focused={focusSeq === e.seq}
                     onToggle={() => setOpenSeq(openSeq === e.seq ? null : e.seq)} />
                 ))}
               </Table.Tbody>

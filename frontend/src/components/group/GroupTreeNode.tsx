@@ -23,6 +23,11 @@ export function GroupTreeNode() {
       py={3}
       data-testid="nav-groups"
     >
+      {loaded && groups.length === 0 && (
+        <Text size="xs" c="dimmed" px="sm" py={4} data-testid="nav-no-groups">
+          No axes groups. Add one under "groups" in project.json (composition, axes A0…) and reopen the project.
+        </Text>
+      )}
       {groups.map((g) => (
         <NavLink
           key={g.name}

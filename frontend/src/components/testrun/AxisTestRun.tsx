@@ -1,15 +1,15 @@
 import { ActionIcon, Badge, Box, Button, Center, Group, Loader, NativeSelect, Stack, Text, Tooltip } from "@mantine/core";
 import { IconAlertOctagon, IconHandStop, IconPower, IconRotateClockwise2, IconSettings } from "@tabler/icons-react";
-import { type ReactNode, useMemo, useState } from "react";
+import { type KeyboardEvent, type FocusEvent, type ReactNode, useMemo, useState } from "react";
 import type { AxisSummary } from "../../api/types";
 import { useAxisList, useAxisSummary, useLive } from "../../hooks/useLive";
 import { type AxisUnits, axisState, axisTypeLabel, axisUnits, stateColor } from "../../lib/format";
-import { issue, resetAxis, setServo, stopAxis } from "../../store/commands";
+import { type JogDir, issue, jogRelease, resetAxis, setServo, stopAxis } from "../../store/commands";
 import { axisForms, num, setFormField, useAxisForms } from "../../store/forms";
 import { openSettingsTab } from "../../store/tabs";
 import { AxisChart } from "./AxisChart";
 import { HomingPanel } from "./HomingPanel";
-import { JogPanel } from "./JogPanel";
+import { JogPanel, startJog } from "./JogPanel";
 import { LastInstructionPanel } from "./LastInstructionPanel";
 import { AxisErrorPanel, PositionPanel, StatusPanel } from "./LivePanels";
 import { MoveForms } from "./MoveForms";
@@ -178,9 +178,33 @@ function HeaderBar({ axis }: { axis: AxisSummary }) {
   );
 }
 
+const ARROW_JOG: Record<string, JogDir> = { ArrowLeft: "minus", ArrowRight: "plus" };
+
+/** Keys typed into a field (or a slider) are the field's, not a jog. */
+function ownsArrows(t: EventTarget | null): boolean {
+  if (!(t instanceof HTMLElement)) return false;
+  return t.isContentEditable || ["INPUT", "TEXTAREA", "SELECT"].includes(t.tagName) || t.getAttribute("role") === "slider";
+}
+
 function TestRunBody({ axis, units }: { axis: AxisSummary; units: AxisUnits }) {
+  const name = axis.name;
+  // ← / → held = hold-to-jog while the test run has the focus; key up, leaving the panel and window blur
+  // (commands.ts releaseAllJogs) stop it
+  const keyDown = (e: KeyboardEvent<HTMLDivElement>) => {
+    const dir = ARROW_JOG[e.key];
+    if (!dir || ownsArrows(e.target) || e.altKey || e.ctrlKey || e.metaKey) return;
+    e.preventDefault();
+    if (!e.repeat) startJog(name, dir);
+  };
+  const keyUp = (e: KeyboardEvent<HTMLDivElement>) => {
+    if (ARROW_JOG[e.key]) jogRelease(name);
+  };
+  const blur = (e: FocusEvent<HTMLDivElement>) => {
+    if (!(e.relatedTarget instanceof Node && e.currentTarget.contains(e.relatedTarget))) jogRelease(name);
+  };
   return (
-    <Stack gap={8} p={8} data-testid={`testrun-${axis.name}`}>
+    <Stack gap={8} p={8} data-testid={`testrun-${axis.name}`} tabIndex={-1} onKeyDown={keyDown} onKeyUp={keyUp}
+      onBlur={blur} style={{ outline: "none" }}>
       <HeaderBar axis={axis} />
       <Box style={{ display: "flex", gap: 8, alignItems: "flex-start", flexWrap: "wrap" }}>
         <Stack gap={8} style={{ flex: "1 1 600px", minWidth: 560 }}>

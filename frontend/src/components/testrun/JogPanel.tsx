@@ -78,26 +78,29 @@ function Inching({ axis, unit }: { axis: string; unit: string }) {
   );
 }
 
+/** Start a hold-to-jog with the jog velocity and acceleration of the form (buttons and the ← / → keys). */
+export function startJog(axis: string, dir: JogDir): void {
+  const forms = axisForms(axis);
+  const v = num(forms.jogVelocity);
+  const a = num(forms.jogAcceleration);
+  if (v === null || a === null) {
+    notifyError("Jog", new Error("enter numbers for the jog velocity and acceleration"));
+    return;
+  }
+  jogPress(axis, dir, v, a);
+}
+
 /** MC_MoveJog with a dead-man lease: hold − / + to jog; inching steps with MC_MoveRelative. */
 export function JogPanel({ axis, units }: { axis: string; units: AxisUnits }) {
   const f = useAxisForms(axis);
   const cmds = useAxisCommands(axis);
 
-  const press = (dir: JogDir) => {
-    const forms = axisForms(axis);
-    const v = num(forms.jogVelocity);
-    const a = num(forms.jogAcceleration);
-    if (v === null || a === null) {
-      notifyError("Jog", new Error("enter numbers for the jog velocity and acceleration"));
-      return;
-    }
-    jogPress(axis, dir, v, a);
-  };
+  const press = (dir: JogDir) => startJog(axis, dir);
   const release = () => jogRelease(axis);
 
   return (
     <Panel
-      title="Jog (MC_MoveJog, hold to move) and inching"
+      title="Jog (MC_MoveJog, hold to move; ← / → keys) and inching"
       right={<JogStatus id={cmds.jogId} />}
       testId="jog-panel"
     >
