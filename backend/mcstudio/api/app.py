@@ -7,7 +7,7 @@ from collections.abc import AsyncIterator, Callable
 from pathlib import Path
 from typing import Any
 
-from fastapi import APIRouter, FastAPI
+from fastapi import APIRouter, Depends, FastAPI
 from fastapi.middleware.cors import CORSMiddleware
 from fastapi.openapi.utils import get_openapi
 from fastapi.responses import FileResponse, JSONResponse
@@ -15,8 +15,24 @@ from fastapi.staticfiles import StaticFiles
 
 from .. import __version__
 from . import errors
-from .models import WsHeartbeat, WsSubscribe
-from .routers import axes, cams, controller, ethercat, events, fb, groups, health, live, project, robots, traces
+from .auth import AccessMiddleware, AccessPolicy
+from .control import ControlRegistry, control_guard
+from .models import WsHeartbeat, WsPing, WsSubscribe
+from .routers import (
+    axes,
+    cams,
+    control,
+    controller,
+    ethercat,
+    events,
+    fb,
+    groups,
+    health,
+    live,
+    project,
+    robots,
+    traces,
+)
 from .state import Studio
 
 API_PREFIX = "/api/v1"
@@ -32,8 +48,12 @@ def default_static_dir() -> Path | None:
 
 
 def create_app(studio: Studio, *, static_dir: Path | None = None, cors_origins: list[str] | None = None,
-               on_startup: Callable[[], None] | None = None) -> FastAPI:
-    """The application; `on_startup` runs once the server has started (the CLI starts the kernel thread there)."""
+               on_startup: Callable[[], None] | None = None, access: AccessPolicy | None = None,
+               control_registry: ControlRegistry | None = None) -> FastAPI:
+    """The application; `on_startup` runs once the server has started (the CLI starts the kernel thread there).
+
+    `access`: the token / Host / Origin checks (auth.py; default: Origin checks only — `mcstudio serve` passes
+    `AccessPolicy.for_bind`). `control_registry`: who holds test-run control (control.py; default: a new one)."""
 
     @contextlib.asynccontextmanager
     async def lifespan(_: FastAPI) -> AsyncIterator[None]:
@@ -53,14 +73,25 @@ def create_app(studio: Studio, *, static_dir: Path | None = None, cors_origins: 
         redoc_url=None,
     )
     app.state.studio = studio
+    app.state.control = control_registry if control_registry is not None else ControlRegistry()
+    policy = access if access is not None else AccessPolicy(
+        origins=frozenset(o.rstrip("/") for o in cors_origins or []))
+    app.state.access = policy
     errors.install(app)
+    # Only the studio's own origin (and the Vite dev server, through its proxy) is served unless CORS origins are
+    # given; the access middleware is added last, so it is the outermost layer (preflights pass it, D119).
     if cors_origins:
-        app.add_middleware(CORSMiddleware, allow_origins=cors_origins, allow_methods=["*"], allow_headers=["*"])
+        app.add_middleware(CORSMiddleware, allow_origins=cors_origins, allow_methods=["*"], allow_headers=["*"],
+                           allow_credentials=True)
+    app.add_middleware(AccessMiddleware, policy=policy)
 
     api = APIRouter(prefix=API_PREFIX)
+    guarded = [Depends(control_guard)]  # requests that need test-run control (control.py TEST_RUN, CONFIGURATION)
     for r in (health.router, controller.router, project.router, axes.router, groups.router, fb.router, events.router,
-              ethercat.router, live.router, cams.router, robots.router, traces.router):
-        api.include_router(r)
+              ethercat.router, cams.router, robots.router, traces.router):
+        api.include_router(r, dependencies=guarded)
+    api.include_router(live.router)
+    api.include_router(control.router)
     app.include_router(api)
 
     @app.get("/openapi.json", include_in_schema=False)
@@ -73,7 +104,7 @@ def create_app(studio: Studio, *, static_dir: Path | None = None, cors_origins: 
         schema = get_openapi(title=app.title, version=app.version, description=app.description, routes=app.routes)
         comps = schema.setdefault("components", {}).setdefault("schemas", {})
         # WebSocket client messages are not routes; publish their schemas for the generated client types.
-        for model in (WsSubscribe, WsHeartbeat):
+        for model in (WsSubscribe, WsHeartbeat, WsPing):
             comps[model.__name__] = model.model_json_schema(ref_template="#/components/schemas/{model}")
         app.openapi_schema = schema
         return schema

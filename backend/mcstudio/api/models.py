@@ -7,6 +7,7 @@ from typing import Annotated, Any, Literal
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, StrictBool, StrictFloat, StrictInt, StrictStr
 
 from ..project.models import AxisConfig
+from .control import ControlState
 
 Mode = Literal["realtime", "fast", "paused"]
 
@@ -329,6 +330,13 @@ class WsHeartbeat(_Model):
     fbs: list[int]
 
 
+class WsPing(_Model):
+    """Client → server: "still here" (a client that gave a client id must send something at least every 10 s or it
+    loses test-run control, decision D117)."""
+
+    type: Literal["ping"]
+
+
 class AxisLive(_Model):
     name: str
     variables: AxisVariables
@@ -342,3 +350,4 @@ class WsSnapshot(_Model):
     axes: list[AxisLive]
     fbs: dict[str, FBOut]
     events: list[EventOut]
+    control: ControlState | None = Field(None, description="Who holds test-run control (api/control.py)")

@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
-from fastapi import APIRouter, Depends, HTTPException, Response
+from fastapi import APIRouter, Depends, HTTPException, Request, Response
 
 from ...controller.kernel import Controller
 from ...controller.mc.fb.registry import FB_TYPES
+from ..control import note_created
 from ..deps import get_studio
 from ..models import FBCreate, FBOut, FBPatch, FBType
 from ..state import Studio
@@ -34,11 +35,12 @@ def list_fbs(studio: Studio = Depends(get_studio)) -> list[FBOut]:
     "(`Axis`) are given by name. With `lease_s` the instance is a dead-man: unless renewed (PATCH or a WebSocket "
     "heartbeat) within `lease_s`, its Execute/Enable-type inputs drop to FALSE.",
 )
-def create_fb(body: FBCreate, studio: Studio = Depends(get_studio)) -> FBOut:
+def create_fb(body: FBCreate, request: Request, studio: Studio = Depends(get_studio)) -> FBOut:
     def create(c: Controller) -> int:
         return c.fb(body.type, lease_s=body.lease_s, **body.inputs).id
 
     fb_id = studio.runner.call(create, see_cycle=True)
+    note_created(request, fb_id)  # its dead-man inputs drop when the creating client loses control (D117)
     out = studio.fb_out(studio.runner.snapshot, fb_id)
     assert out is not None
     return out
