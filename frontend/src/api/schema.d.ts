@@ -684,23 +684,6 @@ export interface paths {
         patch?: never;
         trace?: never;
     };
-    "/api/v1/snapshot": {
-        parameters: {
-            query?: never;
-            header?: never;
-            path?: never;
-            cookie?: never;
-        };
-        /** The latest snapshot (the WebSocket's payload) */
-        get: operations["get_snapshot_api_v1_snapshot_get"];
-        put?: never;
-        post?: never;
-        delete?: never;
-        options?: never;
-        head?: never;
-        patch?: never;
-        trace?: never;
-    };
     "/api/v1/cams": {
         parameters: {
             query?: never;
@@ -927,6 +910,80 @@ export interface paths {
          */
         put: operations["put_project_traces_api_v1_project_traces_put"];
         post?: never;
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/snapshot": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        /** The latest snapshot (the WebSocket's payload) */
+        get: operations["get_snapshot_api_v1_snapshot_get"];
+        put?: never;
+        post?: never;
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/control": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        /** Who holds test-run control */
+        get: operations["get_control_api_v1_control_get"];
+        put?: never;
+        post?: never;
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/control/take": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        get?: never;
+        put?: never;
+        /**
+         * Take test-run control
+         * @description For the client in the X-MCStudio-Client header. While another client holds control this is refused with 409 unless `force`: the previous holder becomes read-only (it is told over its WebSocket) and its leased instances drop their Execute/Enable inputs (its jog stops).
+         */
+        post: operations["take_control_api_v1_control_take_post"];
+        delete?: never;
+        options?: never;
+        head?: never;
+        patch?: never;
+        trace?: never;
+    };
+    "/api/v1/control/release": {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        get?: never;
+        put?: never;
+        /**
+         * Release test-run control
+         * @description Nobody holds control afterwards; the releasing client's leased instances drop their Execute/Enable inputs. A client that does not hold control changes nothing.
+         */
+        post: operations["release_control_api_v1_control_release_post"];
         delete?: never;
         options?: never;
         head?: never;
@@ -1918,6 +1975,110 @@ export interface components {
             /** Jm */
             Jm: number;
         };
+        /** ControlChange */
+        ControlChange: {
+            /**
+             * Reason
+             * @description taken: took free control; forced: took it from `previous`; released: gave it up; lost: its connection closed or went silent
+             * @enum {string}
+             */
+            reason: "taken" | "forced" | "released" | "lost";
+            /**
+             * Previous
+             * @description Name of the client that held control before
+             */
+            previous?: string | null;
+            /**
+             * By
+             * @description Name of the client that took control (taken, forced)
+             */
+            by?: string | null;
+        };
+        /** ControlClient */
+        ControlClient: {
+            /** Id */
+            id: string;
+            /** Name */
+            name: string;
+            /**
+             * Connected
+             * @description It has an open WebSocket
+             */
+            connected: boolean;
+        };
+        /** ControlHolder */
+        ControlHolder: {
+            /**
+             * Id
+             * @description The holder's client id (what it sends in X-MCStudio-Client)
+             */
+            id: string;
+            /**
+             * Name
+             * @description Display name, e.g. 'browser 2 · 127.0.0.1'
+             */
+            name: string;
+            /**
+             * Since S
+             * @description UNIX time [s] at which it took control
+             */
+            since_s: number;
+        };
+        /** ControlOut */
+        ControlOut: {
+            /** @description Who holds test-run control (null: nobody) */
+            holder: components["schemas"]["ControlHolder"] | null;
+            /**
+             * Clients
+             * @description Known clients, connected ones first
+             */
+            clients?: components["schemas"]["ControlClient"][];
+            /** @description The last change of holder */
+            change?: components["schemas"]["ControlChange"] | null;
+            /**
+             * Version
+             * @description Increments with every change of holder or client list
+             * @default 0
+             */
+            version: number;
+            /**
+             * You
+             * @description The client id of this request (X-MCStudio-Client), if any
+             */
+            you?: string | null;
+        };
+        /** ControlState */
+        ControlState: {
+            /** @description Who holds test-run control (null: nobody) */
+            holder: components["schemas"]["ControlHolder"] | null;
+            /**
+             * Clients
+             * @description Known clients, connected ones first
+             */
+            clients?: components["schemas"]["ControlClient"][];
+            /** @description The last change of holder */
+            change?: components["schemas"]["ControlChange"] | null;
+            /**
+             * Version
+             * @description Increments with every change of holder or client list
+             * @default 0
+             */
+            version: number;
+        };
+        /** ControlTakeIn */
+        ControlTakeIn: {
+            /**
+             * Force
+             * @description Take control from another holder (it becomes read-only; its jogs stop)
+             * @default false
+             */
+            force: boolean;
+            /**
+             * Name
+             * @description Display name to show (default: the one given on the WebSocket, or 'client N · address')
+             */
+            name?: string | null;
+        };
         /** ControllerSettings */
         ControllerSettings: {
             /**
@@ -1976,6 +2137,19 @@ export interface components {
              * @default 0
              */
             cycle_time_max_us: number;
+        };
+        /** CoordSystemOut */
+        CoordSystemOut: {
+            /**
+             * Csid
+             * @description User coordinate system number (CSID)
+             */
+            csid: number;
+            /**
+             * Pose
+             * @description [Tx, Ty, Tz] mm, [Rx, Ry, Rz] deg: the UCS origin and rotation in the MCS (R = Rz·Ry·Rx, omron-robot-delta3.md §4)
+             */
+            pose: number[];
         };
         /**
          * Delta3KinematicsConfig
@@ -3855,6 +4029,11 @@ export interface components {
             kin_status: string;
             /** @description Set while the group or one of its axes is in ErrorStop */
             alarm: components["schemas"]["RobotAlarm"] | null;
+            /**
+             * Coord Systems
+             * @description User coordinate systems defined by MC_DefineCoordSystem (volatile, lost on a restart; D83), by CSID
+             */
+            coord_systems: components["schemas"]["CoordSystemOut"][];
         };
         /** RobotsOut */
         RobotsOut: {
@@ -4731,6 +4910,8 @@ export interface components {
             };
             /** Events */
             events: components["schemas"]["EventOut"][];
+            /** @description Who holds test-run control (api/control.py) */
+            control?: components["schemas"]["ControlState"] | null;
         };
         /**
          * _eMC_ACCDECOVER
@@ -4857,6 +5038,18 @@ export interface components {
             /** Fbs */
             fbs: number[];
         };
+        /**
+         * WsPing
+         * @description Client → server: "still here" (a client that gave a client id must send something at least every 10 s or it
+         *     loses test-run control, decision D117).
+         */
+        WsPing: {
+            /**
+             * Type
+             * @constant
+             */
+            type: "ping";
+        };
     };
     responses: never;
     parameters: never;
@@ -4980,6 +5173,13 @@ export interface operations {
                 content: {
                     "application/json": components["schemas"]["StepOut"];
                 };
+            };
+            /** @description `until.fb` names no instance */
+            404: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
             };
             /** @description The controller is not paused */
             409: {
@@ -5991,6 +6191,13 @@ export interface operations {
                     "application/json": components["schemas"]["ImageOut"];
                 };
             };
+            /** @description No such slave */
+            404: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
             /** @description Validation Error */
             422: {
                 headers: {
@@ -6136,6 +6343,13 @@ export interface operations {
                     "application/json": components["schemas"]["DeviceDescription"];
                 };
             };
+            /** @description No such device in the library */
+            404: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
             /** @description Validation Error */
             422: {
                 headers: {
@@ -6220,26 +6434,6 @@ export interface operations {
                     [name: string]: unknown;
                 };
                 content?: never;
-            };
-        };
-    };
-    get_snapshot_api_v1_snapshot_get: {
-        parameters: {
-            query?: never;
-            header?: never;
-            path?: never;
-            cookie?: never;
-        };
-        requestBody?: never;
-        responses: {
-            /** @description Successful Response */
-            200: {
-                headers: {
-                    [name: string]: unknown;
-                };
-                content: {
-                    "application/json": components["schemas"]["WsSnapshot"];
-                };
             };
         };
     };
@@ -6928,6 +7122,120 @@ export interface operations {
                 content: {
                     "application/json": components["schemas"]["HTTPValidationError"];
                 };
+            };
+        };
+    };
+    get_snapshot_api_v1_snapshot_get: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        requestBody?: never;
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["WsSnapshot"];
+                };
+            };
+        };
+    };
+    get_control_api_v1_control_get: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        requestBody?: never;
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["ControlOut"];
+                };
+            };
+        };
+    };
+    take_control_api_v1_control_take_post: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        requestBody: {
+            content: {
+                "application/json": components["schemas"]["ControlTakeIn"];
+            };
+        };
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["ControlOut"];
+                };
+            };
+            /** @description No X-MCStudio-Client header */
+            400: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description Another client holds control (and force is false) */
+            409: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
+            };
+            /** @description Validation Error */
+            422: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["HTTPValidationError"];
+                };
+            };
+        };
+    };
+    release_control_api_v1_control_release_post: {
+        parameters: {
+            query?: never;
+            header?: never;
+            path?: never;
+            cookie?: never;
+        };
+        requestBody?: never;
+        responses: {
+            /** @description Successful Response */
+            200: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content: {
+                    "application/json": components["schemas"]["ControlOut"];
+                };
+            };
+            /** @description No X-MCStudio-Client header */
+            400: {
+                headers: {
+                    [name: string]: unknown;
+                };
+                content?: never;
             };
         };
     };
