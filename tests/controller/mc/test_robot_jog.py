@@ -208,3 +208,46 @@ def test_deleting_a_running_jog_ends_its_job_and_holds_the_robot() -> None:
     again = _jog(c, Direction=[0.0, 1.0, 0.0], Enable=True)
     c.step(50)
     assert again.Active and not again.Error and g.state == GroupState.Moving
+
+
+def test_step_mode_moves_exactly_the_distance_in_a_ucs_then_stops() -> None:
+    """Mode 2 (D93, inching): at Enable↑ a step of Distance along Direction of the chosen CS — here +X of a UCS
+    turned by Rz = 90° (= +Y of the MCS) — on a straight line, ending exactly Distance further and InPosition; the
+    group stays Moving under control until Enable↓, then Standby; the next step needs a new Enable↑."""
+    c = _robot_at()
+    g = c.mc.groups_by_name[GRP]
+    d = c.fb("MC_DefineCoordSystem", AxesGroup=GRP, Execute=True,
+             CoordTransform={"CSID": 1, "Pose": [0.0, 0.0, -300.0, 0.0, 0.0, 90.0]})
+    step_until(c, d, "Done")
+    p0 = _tcp(c)
+    jog = _jog(c, Mode=2, Distance=10.0, Direction=[1.0, 0.0, 0.0], CoordSystem=3, CSID=1, Enable=True)
+    step_until(c, jog, "InPosition", limit=2000)
+    p = _tcp(c)
+    assert p == pytest.approx((p0[0], p0[1] + 10.0, p0[2]), abs=1e-9)
+    assert list(jog.CommandPosition) == pytest.approx([p[1], -p[0], p[2] + 300.0], abs=1e-9)
+    c.step(50)
+    assert _tcp(c) == p and jog.InPosition and g.state == GroupState.Moving
+    jog.Enable = False
+    step_until(c, jog, "Busy", False, limit=10)
+    assert g.state == GroupState.Standby
+    jog.Direction = [0.0, -1.0, 0.0]  # −Y of the UCS = +X of the MCS
+    jog.Enable = True
+    c.step(1)
+    step_until(c, jog, "InPosition", limit=2000)
+    assert _tcp(c) == pytest.approx((p0[0] + 10.0, p0[1] + 10.0, p0[2]), abs=1e-9)
+
+
+def test_step_mode_stops_at_the_boundary_and_needs_a_positive_distance() -> None:
+    """Mode 2: a step past the workspace's bottom face stops inside the 0.1 mm margin (AtBoundary, WarningID 6700,
+    not InPosition) like the jog; Distance ≤ 0 → 5479 (Travel Distance Out of Range)."""
+    c = _robot_at((0.0, 0.0, -440.0))
+    g = c.mc.groups_by_name[GRP]
+    ws = g.kinematics.workspace_obj()  # type: ignore[union-attr]
+    jog = _jog(c, Mode=2, Distance=20.0, Direction=[0.0, 0.0, -1.0], Enable=True)
+    step_until(c, jog, "AtBoundary", limit=2000)
+    assert ws.z_bottom + 0.1 - 1e-6 <= _tcp(c)[2] < ws.z_bottom + 0.1 + 0.01
+    assert jog.out["WarningID"] == 0x6700 and not jog.InPosition and not jog.Error
+    c2 = _robot_at()
+    bad = _jog(c2, Mode=2, Distance=0.0, Enable=True)
+    c2.step(1)
+    assert bad.Error and bad.out["ErrorID"] == 0x5479

@@ -12,6 +12,9 @@ line in the Cartesian frame. It uses only the group's public interface: `check_s
 * **Mode 0 (jog)**: while Enable is TRUE the point moves along `Direction` (X, Y, Z of the MCS or of a UCS,
   normalised) at `Velocity`, accelerating and decelerating at `Acceleration` (0 = step). Enable FALSE decelerates to
   a stop; then the group is Standby again. A new direction while moving: the point first stops, then turns.
+* **Mode 2 (step, inching)**: at Enable↑ the point moves `Distance` along `Direction` (the target is fixed at the
+  start) with the same ramps and stops there (`InPosition`); a step that would leave the workspace stops at the
+  boundary (AtBoundary, WarningID 6700). The next step needs a new Enable↑ (decision D93).
 * **Mode 1 (go to)**: while Enable is TRUE the point moves on a straight line to `TargetPosition` and stops there
   (trapezoidal speed, `InPosition` once the command is there and every axis within its in-position range); a new
   target is taken at once. The demo's pick-and-place sequence uses it.
@@ -24,7 +27,8 @@ line in the Cartesian frame. It uses only the group's public interface: `check_s
 * The joint speed is kept within each axis's Maximum Velocity by slowing the step (not by the group's saturation,
   which would bend the line).
 * Errors (group minor faults, like the group instructions): 5461 group, 5710 kinematics not set, 543F disabled,
-  5441/5466 servo OFF / not homed, 5422 Velocity ≤ 0, 5423 Acceleration < 0, 5431 Mode, 542C CoordSystem,
+  5441/5466 servo OFF / not homed, 5422 Velocity ≤ 0, 5423 Acceleration < 0, 5431 Mode, 5479 Distance ≤ 0 (Mode 2),
+  542C CoordSystem,
   570B CSID not defined, 570F no forward kinematics, 6701 TCP outside the workspace at the start. MC_GroupStop, a
   group error or another group instruction aborts it (CommandAborted until Enable falls).
 
@@ -75,23 +79,27 @@ class MC_RobotJog(_GroupRef, FunctionBlock):
     DEF = FBDef(
         name="MC_RobotJog", title="Cartesian jog of a robot (MC Studio)",
         summary="MC Studio extension for the test run: while Enable is TRUE the Delta3 TCP moves in a straight line "
-                "along Direction (Mode 0) or to TargetPosition (Mode 1) in the MCS or a UCS, never leaving the "
+                "along Direction (Mode 0), to TargetPosition (Mode 1) or by Distance along Direction (Mode 2, a step) "
+                "in the MCS or a UCS, never leaving the "
                 "workspace; the axes follow through the group like MC_GroupSyncMoveAbsolute.",
         kind="enable", inouts=(IO_GROUP,),
         inputs=(I_ENABLE,
-                Var("Mode", "UINT", 0, "0: jog along Direction; 1: go to TargetPosition", None, "0, 1"),
+                Var("Mode", "UINT", 0, "0: jog along Direction; 1: go to TargetPosition; 2: step Distance along "
+                    "Direction at Enable↑", None, "0, 1, 2"),
                 Var("Direction", "ARRAY[0..2] OF LREAL", [1.0, 0.0, 0.0],
                     "Jog direction [X, Y, Z] in the coordinate system (normalised; [0, 0, 0] = stand still)", None,
                     "any"),
                 Var("TargetPosition", "ARRAY[0..2] OF LREAL", [0.0, 0.0, 0.0],
                     "Go-to target [X, Y, Z] in the coordinate system (Mode 1)", "mm", "inside the workspace"),
+                Var("Distance", "LREAL", 1.0, "Step length along Direction (Mode 2)", "mm", "positive"),
                 Var("Velocity", "LREAL", 50.0, "TCP speed", "mm/s", "positive"),
                 Var("Acceleration", "LREAL", 500.0, "TCP acceleration and deceleration (0 = step change)", "mm/s²",
                     "positive or 0"),
                 Var("CoordSystem", "UINT", MCS, "1: MCS (_mcRBT_MCS), 3: UCS (_mcRBT_UCS)", None, "1, 3"),
                 Var("CSID", "UINT", 0, "User coordinate system (CoordSystem 3)", None, "0–15")),
         outputs=(Var("Enabled", "BOOL", False, "TRUE while the instruction controls the group"), O_BUSY, O_ACTIVE,
-                 Var("InPosition", "BOOL", False, "Mode 1: the command is at the target and the axes in position"),
+                 Var("InPosition", "BOOL", False,
+                     "Modes 1 and 2: the command is at the target and the axes in position"),
                  Var("AtBoundary", "BOOL", False, "TRUE while the point is stopped at the workspace boundary"),
                  Var("WarningID", "WORD", 0, "6700: stopped at the boundary; 571B: go-to target outside"),
                  Var("CommandPosition", "ARRAY[0..2] OF LREAL", [0.0, 0.0, 0.0],
@@ -116,6 +124,7 @@ class MC_RobotJog(_GroupRef, FunctionBlock):
         self._s = 0.0  # speed along _u [mm/s]
         self._rot: tuple[Vec3, Vec3, Vec3] | None = None  # UCS rotation rows (None = MCS)
         self._origin: Vec3 = (0.0, 0.0, 0.0)
+        self._goal: Vec3 | None = None  # Mode 2: the step's end point (MCS), fixed at Enable↑
         self._warned = 0
 
     # ------------------------------------------------------------------ coordinate systems
@@ -176,7 +185,11 @@ class MC_RobotJog(_GroupRef, FunctionBlock):
         if kin is None or group.m.cycle < group.kin_from_cycle:
             self.fail(E_KIN_NOT_SET, group)
             return
-        code = (E.E_MOVE_MODE if i["Mode"] not in (0, 1) else E.E_VELOCITY if not i["Velocity"] > 0
+        distance = i.get("Distance", 1.0)
+        bad_distance = i["Mode"] == 2 and (isinstance(distance, bool) or not isinstance(distance, int | float)
+                                           or not math.isfinite(distance) or not distance > 0)
+        code = (E.E_MOVE_MODE if i["Mode"] not in (0, 1, 2) else E.E_TRAVEL_DISTANCE if bad_distance
+                else E.E_VELOCITY if not i["Velocity"] > 0
                 else E.E_ACCELERATION if i["Acceleration"] < 0 else E_COORD_SYSTEM if i["CoordSystem"] not in (MCS, UCS)
                 else 0)
         if code:
@@ -215,6 +228,12 @@ class MC_RobotJog(_GroupRef, FunctionBlock):
             return
         self._params, self._ws, self._group = params, ws, group
         self._p, self._u, self._s = p, None, 0.0
+        self._goal = None
+        if i["Mode"] == 2:
+            dv = self._to_mcs(i["Direction"], point=False)
+            n = math.sqrt(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2])
+            d = float(distance) / n if n > 1e-12 else 0.0
+            self._goal = (p[0] + dv[0] * d, p[1] + dv[1] * d, p[2] + dv[2] * d)
         self._target = _SyncTarget(self, (cmd[0], cmd[1], cmd[2]))
         job = Job(JobKind.GROUP_SYNC, self._target)
         code = group.submit(job)
@@ -260,15 +279,19 @@ class MC_RobotJog(_GroupRef, FunctionBlock):
         v_max = min(float(i["Velocity"]), group.op.MaxInterpolationVel) if i["Velocity"] > 0 else 0.0
         acc = float(i["Acceleration"])
         p = self._p
-        goto = int(i["Mode"]) == 1
+        mode = int(i["Mode"])
+        goto = mode == 1
+        stepping = mode == 2 and self._goal is not None
+        targeted = goto or stepping  # a fixed end point: approach it and stop there (InPosition)
         warning = 0
         dist = math.inf
         want_u: Vec3 | None = None
-        if goto:
-            goal = self._to_mcs(i["TargetPosition"], point=True)
+        goal = p
+        if targeted:
+            goal = self._goal if stepping and self._goal is not None else self._to_mcs(i["TargetPosition"], point=True)
             d = (goal[0] - p[0], goal[1] - p[1], goal[2] - p[2])
             dist = math.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
-            if self._admissible(goal) is None:
+            if goto and self._admissible(goal) is None:  # a step is cut at the boundary instead (like the jog)
                 warning, dist = E_TARGET_OUTSIDE, 0.0
             elif dist > 1e-9:
                 want_u = (d[0] / dist, d[1] / dist, d[2] / dist)
@@ -279,9 +302,9 @@ class MC_RobotJog(_GroupRef, FunctionBlock):
                 want_u = (dv[0] / n, dv[1] / n, dv[2] / n)
         # speed: towards the wanted one; a change of the jog direction first stops the point
         v_goal = v_max if (en and want_u is not None) else 0.0
-        if self._u is not None and want_u is not None and self._s > 0 and not goto and want_u != self._u:
+        if self._u is not None and want_u is not None and self._s > 0 and not targeted and want_u != self._u:
             v_goal = 0.0
-        if goto and acc > 0 and dist < math.inf:
+        if targeted and acc > 0 and dist < math.inf:
             v_goal = min(v_goal, math.sqrt(2.0 * acc * dist))
         s = self._s
         s = v_goal if acc <= 0 else max(s - acc * T, min(s + acc * T, v_goal))
@@ -289,11 +312,11 @@ class MC_RobotJog(_GroupRef, FunctionBlock):
             s = 0.0
         if s == 0.0 or (self._s == 0.0 and want_u is not None):
             self._u = want_u if en else self._u
-        elif goto:
+        elif targeted:
             self._u = want_u  # a new target: the direction changes at once, the speed stays continuous
         u = self._u
         step = s * T
-        if goto:
+        if targeted:
             step = min(step, dist)
         at_boundary = False
         if u is not None and step > 0:
@@ -328,8 +351,8 @@ class MC_RobotJog(_GroupRef, FunctionBlock):
             if angles is not None:
                 target.inp["Position"] = [*angles, 0.0]
                 p = q
-            if goto and dist - step <= 1e-9 and not at_boundary:
-                p, s = self._to_mcs(i["TargetPosition"], point=True), 0.0
+            if targeted and dist - step <= 1e-9 and not at_boundary:
+                p, s = goal, 0.0
                 angles2 = self._admissible(p)
                 if angles2 is not None:
                     target.inp["Position"] = [*angles2, 0.0]
@@ -345,7 +368,7 @@ class MC_RobotJog(_GroupRef, FunctionBlock):
         o["WarningID"] = warning
         o["CommandPosition"] = self._from_mcs(p)
         o["CommandVelocity"] = s
-        at_goal = goto and s == 0.0 and warning == 0 and (dist - step) <= 1e-9
+        at_goal = targeted and s == 0.0 and warning == 0 and (dist - step) <= 1e-9
         o["InPosition"] = at_goal and job.in_velocity
         if not en and s == 0.0:
             # stopped after Enable fell: end the synchronous job, the group is Standby again
