@@ -68,3 +68,39 @@ def test_tcp_follows_a_move_through_the_fb_api(delta: tuple[TestClient, Studio])
 def test_project_without_robot_lists_none() -> None:
     for client, _ in _client(small_project()):
         assert client.get("/api/v1/viz/robots").json()["robots"] == []
+
+
+def test_kinematics_in_force_and_user_coordinate_systems(delta: tuple[TestClient, Studio]) -> None:
+    """D93/D94: the read-out gives the kinematics in force (MC_SetKinTransform's, not the project's) and the user
+    coordinate systems MC_DefineCoordSystem defined (CSID, pose) — what the robot jog offers as its frames."""
+    client, studio = delta
+    assert client.get("/api/v1/viz/robots").json()["robots"][0]["coord_systems"] == []
+    ids = []
+    for name in ("MC_Axis000", "MC_Axis001", "MC_Axis002"):
+        pw = client.post("/api/v1/fb", json={"type": "MC_Power", "inputs": {"Axis": name, "Enable": True}}).json()
+        client.post("/api/v1/controller/step", json={"cycles": 50, "until": {"fb": pw["id"], "output": "Status",
+                                                                             "equals": True}})
+        home = client.post("/api/v1/fb", json={"type": "MC_Home", "inputs": {"Axis": name, "Execute": True}}).json()
+        ids.append(home["id"])
+    for i in ids:
+        client.post("/api/v1/controller/step", json={"cycles": 1000, "until": {"fb": i, "output": "Done",
+                                                                               "equals": True}})
+    kin = client.post("/api/v1/fb", json={"type": "MC_SetKinTransform", "inputs": {
+        "AxesGroup": "MC_Group000", "Execute": True,
+        "KinTransform": {"KinType": 100, "KinParam": [200.0, 320.0, 50.0, 800.0], "ExpansionParam": [30.0]},
+        "Workspace": {"WorkspaceType": 100, "WorkspaceParam": [-60.0, 250.0, 250.0, 150.0, 150.0]}}}).json()
+    client.post("/api/v1/controller/step", json={"cycles": 10, "until": {"fb": kin["id"], "output": "Done",
+                                                                         "equals": True}})
+    for csid, pose in ((3, [10.0, 20.0, -300.0, 0.0, 0.0, 90.0]), (0, [0.0, 0.0, -280.0, 0.0, 0.0, 0.0])):
+        d = client.post("/api/v1/fb", json={"type": "MC_DefineCoordSystem", "inputs": {
+            "AxesGroup": "MC_Group000", "Execute": True, "CoordTransform": {"CSID": csid, "Pose": pose}}}).json()
+        client.post("/api/v1/controller/step", json={"cycles": 10, "until": {"fb": d["id"], "output": "Done",
+                                                                             "equals": True}})
+    (robot,) = client.get("/api/v1/viz/robots").json()["robots"]
+    assert robot["kinematics"] == {"Rf": 200.0, "Rm": 50.0, "Lf": 320.0, "Lm": 800.0, "theta": 30.0}
+    assert robot["coord_systems"] == [{"csid": 0, "pose": [0.0, 0.0, -280.0, 0.0, 0.0, 0.0]},
+                                      {"csid": 3, "pose": [10.0, 20.0, -300.0, 0.0, 0.0, 90.0]}]
+    _, tcp = forward_point(Delta3Params(Rf=200.0, Lf=320.0, Rm=50.0, Lm=800.0, theta=30.0),
+                           *[a["act_pos"] for a in robot["axes"]])
+    assert robot["tcp"] == pytest.approx(list(tcp), abs=1e-5)
+    assert studio.controller.project.groups[0].kinematics.Lf == 350.0  # type: ignore[union-attr]  # project unchanged

@@ -243,3 +243,43 @@ def test_coordinate_systems_defined_by_the_program_are_shown(scene: SceneServer)
     scene.update(c.snapshot, force=True)
     frame = scene.robots[0].view._ucs[2]
     np.testing.assert_allclose(frame.position, [0.01, 0.02, -0.3])
+
+
+def test_the_robot_is_redrawn_with_the_kinematics_mc_set_kin_transform_sets(scene: SceneServer) -> None:
+    """D94 (instructions.md MC_SetKinTransform): the view draws the kinematics **in force**. MC_SetKinTransform on
+    the running controller (θ 30°, Lf 320 mm, a smaller workspace) → the next frame rebuilds the robot: its spec is
+    the new one, the platform sits at the forward kinematics of the feedback with the new parameters, the workspace
+    mesh has the new radius; after a 571F (kinematics deleted) the project's parameters are drawn again."""
+    import types
+
+    c = Controller(delta_project())
+    scene.rebuild(c)
+    scene._runner = types.SimpleNamespace(controller=c, epoch=0)  # type: ignore[assignment]
+    _move_all(c, (20.0, 25.0, 30.0))
+    scene.update(c.snapshot)
+    assert scene.robots[0].view.spec.params.theta == 0.0
+    kin = c.fb("MC_SetKinTransform", AxesGroup="MC_Group000", Execute=True,
+               KinTransform={"KinType": 100, "KinParam": [200.0, 320.0, 50.0, 800.0], "ExpansionParam": [30.0]},
+               Workspace={"WorkspaceType": 100, "WorkspaceParam": [-60.0, 250.0, 250.0, 150.0, 150.0]})
+    step_until(c, kin, "Done")
+    c.publish()
+    assert scene.update(c.snapshot)
+    view = scene.robots[0].view
+    p = view.spec.params
+    assert (p.Rf, p.Lf, p.Rm, p.Lm, p.theta) == (200.0, 320.0, 50.0, 800.0, 30.0)
+    assert view.spec.workspace is not None and view.spec.workspace.Rcy == 250.0
+    st, tcp = forward_point(p, *c.snapshot.mc["act_pos"][:3])
+    assert st == Status.OK
+    np.testing.assert_allclose(view.platform.position, np.array(tcp) * MM, atol=1e-9)
+    radius = np.hypot(view.workspace.vertices[:, 0], view.workspace.vertices[:, 1]).max()
+    assert radius == pytest.approx(250.0 * MM, rel=1e-9)
+    assert not scene.update(c.snapshot), "unchanged: no second rebuild"
+    # restriction (5) violated (Rcy > Lm·cos 30°) → 571F deletes the kinematics: the project's are drawn
+    bad = c.fb("MC_SetKinTransform", AxesGroup="MC_Group000", Execute=True,
+               KinTransform={"KinType": 100, "KinParam": [200.0, 350.0, 50.0, 800.0], "ExpansionParam": [0.0]},
+               Workspace={"WorkspaceType": 100, "WorkspaceParam": [-50.0, 700.0, 250.0, 150.0, 150.0]})
+    c.step(1)
+    assert bad.ErrorID == 0x571F and c.mc.groups_by_name["MC_Group000"].kinematics is None
+    c.publish()
+    scene.update(c.snapshot)
+    assert scene.robots[0].view.spec.params.theta == 0.0 and scene.robots[0].view.spec.params.Lf == 350.0

@@ -1,6 +1,7 @@
 """Which robots a project has and how they stand in a snapshot — shared by the 3-D view and the REST read-out.
 
-`robot_specs(project)` lists the Delta3 robots (axes groups with `kinematics.type == "delta3"`); `read_robot(spec,
+`robot_specs(project, groups)` lists the Delta3 robots (axes groups with Delta3 kinematics) with the kinematics **in
+force** — the project's from start-up, replaced at run time by MC_SetKinTransform (D82, D94); `read_robot(spec,
 snapshot)` takes the member axes' **feedback** positions (Act.Pos, degrees) and their states from a published
 snapshot (never from the kernel) and adds the TCP by forward kinematics. Pure functions: no viser, no threads.
 """
@@ -34,11 +35,22 @@ class RobotSpec:
     coord_systems: Mapping[int, UserCoordSystem] = field(default_factory=dict)
 
 
-def robot_specs(project: Project) -> list[RobotSpec]:
-    """The project's Delta3 robots: used axes groups with Delta3 kinematics and three composition axes."""
+def kinematics_in_force(project_group: Any, groups: Mapping[str, Any] | None) -> Any:
+    """The Delta3 kinematics to draw for a project group: those in force in the controller (`AxesGroup.kinematics`,
+    set by MC_SetKinTransform at run time), else the project's (before start-up, or after 571F deleted them)."""
+    running = groups.get(project_group.name) if groups is not None else None
+    kin = getattr(running, "kinematics", None) if running is not None else None
+    return kin if kin is not None else getattr(project_group, "kinematics", None)
+
+
+def robot_specs(project: Project, groups: Mapping[str, Any] | None = None) -> list[RobotSpec]:
+    """The project's Delta3 robots: used axes groups with three composition axes and Delta3 kinematics — with
+    `groups` (the MC module's `groups_by_name`) the kinematics in force (`kinematics_in_force`), so a robot whose
+    kinematics MC_SetKinTransform replaced is drawn with the new parameters, and a group that got kinematics only at
+    run time is drawn, too; without `groups` the project's."""
     out = []
     for g in getattr(project, "groups", None) or []:
-        kin = getattr(g, "kinematics", None)
+        kin = kinematics_in_force(g, groups)
         if kin is None or getattr(kin, "type", None) != "delta3" or len(g.axes) < 3:
             continue
         if getattr(getattr(g, "use", None), "name", "_mcUsedGroup") != "_mcUsedGroup":

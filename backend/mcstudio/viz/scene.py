@@ -1,7 +1,8 @@
 """The 3D view: a viser server showing the machine, bound to loopback by default.
 
 World frame = the MCS of the robot (Z up, origin at the TCP's zero pose, §12.8), in metres. `rebuild(controller)`
-draws every Delta3 robot of the project (`robots.robot_specs`) and a conveyor; a viz thread (`attach(runner)`) reads
+draws every Delta3 robot of the project with the kinematics in force (`robots.robot_specs`; the viz thread rebuilds
+when MC_SetKinTransform replaces them, D94) and a conveyor; a viz thread (`attach(runner)`) reads
 the runner's **published snapshot** at `fps` frames per second — never kernel state — and moves the robots to their
 axes' feedback positions, all scene changes of a frame in one `server.atomic()` block; a frame whose picture would
 not change (same joint positions, alarm and conveyor) is skipped.
@@ -94,6 +95,7 @@ class SceneServer:
         # the plant's workpieces (plant/workpieces.py) on the project's conveyor axis, until set_conveyor is called
         self._source: WorkpieceSource | None = None
         self._coord_seen: dict[str, dict[int, Any]] = {}
+        self._kin_seen: dict[str, Any] = {}  # group → the kinematics object the robots were built with
         self._lock = threading.RLock()
         self._last_key: tuple[Any, ...] | None = None
         self._last_snap: Snapshot | None = None
@@ -182,7 +184,8 @@ class SceneServer:
     def rebuild(self, controller: Controller) -> None:
         """Draw the mechanism of `controller`'s project (called when a project is applied or reset). Reads the
         configuration only; the moving parts take the controller's current snapshot."""
-        specs = robot_specs(controller.project)
+        groups = dict(getattr(controller.mc, "groups_by_name", {}))
+        specs = robot_specs(controller.project, groups)
         names = [a.name for a in controller.mc.axes]
         index = {a.name: int(a.i) for a in controller.mc.axes}
         with self._lock:
@@ -205,6 +208,7 @@ class SceneServer:
                 else:
                     self._source = None
                 self._coord_seen = {}
+                self._kin_seen = {name: getattr(g, "kinematics", None) for name, g in groups.items()}
                 self._place_floor_and_camera(specs, move_clients=[s.params for s in specs]
                                              != [s.params for s in old_specs])
             self._last_key = None
@@ -274,6 +278,21 @@ class SceneServer:
                 with self.server.atomic():
                     r.view.set_coord_systems(systems)
 
+    def _follow_kinematics(self) -> bool:
+        """Rebuild the robots when a group's kinematics in force changed (MC_SetKinTransform replaced them, or 571F
+        deleted them: then the project's are drawn). One identity test per group and frame; True if it rebuilt."""
+        runner = self._runner
+        if runner is None:
+            return False
+        controller = runner.controller
+        groups = getattr(controller.mc, "groups_by_name", {})
+        seen = self._kin_seen
+        if all(getattr(g, "kinematics", None) is seen.get(name) for name, g in groups.items()):
+            return False
+        log.debug("3D view: kinematics changed, rebuilding the robots")
+        self.rebuild(controller)
+        return True
+
     # ------------------------------------------------------------------ per frame
     def readings(self, snap: Snapshot) -> list[RobotReading]:
         return [read_robot(r.view.spec, snap, r.indices) for r in self.robots]
@@ -282,6 +301,8 @@ class SceneServer:
         """Move everything to `snap`; False (and nothing sent) when the picture would not change."""
         t0 = time.perf_counter()
         with self._lock:
+            if self._follow_kinematics():
+                return True  # rebuild drew the frame
             readings = self.readings(snap)
             conv = self._conveyor_position
             i = self._conveyor_index
