@@ -66,6 +66,7 @@ class Axis(AxisPlanning):
         # ≥ 1.10, omron-axis-instructions.md line 100). The emulated network is established from cycle 0.
         self._homed = self.config.drive.EncoderType == "absolute" and not self.virtual
         self.in_pos_waiting = False
+        self.vel_limit = False  # Details.VelLimit: command velocity saturated (group_monitor.py)
         self.homing: Any = None  # the running Homing sequence (mc/homing.py)
         self.latch_owner: dict[int, Any] = {}  # LatchID → instruction using the drive latch
         self.group: Any = None  # the enabled axes group this axis is a composition axis of (group.py)
@@ -609,14 +610,15 @@ class Axis(AxisPlanning):
         self.homed = True
 
     # ------------------------------------------------------------------ _sAXIS_REF
-    def capture(self, state: int) -> tuple[int, int, int, bool, bool, bool]:
+    def capture(self, state: int) -> tuple[int, int, int, bool, bool, bool, bool]:
         """Discrete part of the axis variable (`state`: its state as an int), captured by the kernel thread when a
         snapshot is published."""
         cur = self.current
         busy = cur is not None and (cur.status == JobStatus.STARTING or cur.status == JobStatus.ACTIVE)
         wait = self.in_pos_waiting
         obs = self.observations
-        return (state, self.error_code, next(iter(obs)) if obs else 0, self._homed, wait, not busy and not wait)
+        return (state, self.error_code, next(iter(obs)) if obs else 0, self._homed, wait, not busy and not wait,
+                self.vel_limit)
 
 
 def round_tenth(x: float) -> float:
@@ -624,9 +626,10 @@ def round_tenth(x: float) -> float:
     return math.floor(x * 10.0 + 0.5) / 10.0
 
 
-def axis_variables(axis: Axis, discrete: tuple[int, int, int, bool, bool, bool], row: dict[str, Any]) -> dict[str, Any]:
+def axis_variables(axis: Axis, discrete: tuple[int, int, int, bool, bool, bool, bool],
+                   row: dict[str, Any]) -> dict[str, Any]:
     """The axis variable in the `_sAXIS_REF` layout (`omron-mc-basics.md` §2.3), from captured snapshot data."""
-    state, error_code, obsr_code, homed, in_pos_waiting, idle = discrete
+    state, error_code, obsr_code, homed, in_pos_waiting, idle, vel_limit = discrete
     st = S(state)
     p = axis.params
     return {
@@ -636,7 +639,7 @@ def axis_variables(axis: Axis, discrete: tuple[int, int, int, bool, bool, bool],
             "InPosWaiting": in_pos_waiting,
             "Homed": homed,
             "InHome": homed and abs(row["act_pos"]) <= p.Operation.ZeroPosRange,
-            "VelLimit": False,
+            "VelLimit": vel_limit,
         },
         "Dir": {"Posi": row["cmd_vel"] > 0, "Nega": row["cmd_vel"] < 0},
         "DrvStatus": row["drv"],

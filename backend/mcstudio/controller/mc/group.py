@@ -11,8 +11,9 @@ override, MC_GroupStop). Every period `step` evaluates s(t) — a few float oper
 axes' command positions, so the generic command-value stage of the MC module derives Cmd.Vel/AccDec from them.
 Decisions on unclear points: docs/decisions.md D50–D56.
 
-The group motion itself is mixed in: `group_planning.py` (start/buffer/blend/plan/override) and `group_motion.py`
-(the period, stops, MC_GroupSyncMoveAbsolute); shared types in `group_types.py` (re-exported here).
+The group motion itself is mixed in: `group_planning.py` (start/buffer/blend/plan/override), `group_motion.py`
+(the period, stops, MC_GroupSyncMoveAbsolute) and `group_monitor.py` (in-position check, interpolation warnings,
+VelLimit, the drive side of MC_GroupReset); shared types in `group_types.py` (re-exported here).
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ from typing import TYPE_CHECKING, Any
 from ...drives.cia402 import DI_NEGATIVE_LIMIT, DI_POSITIVE_LIMIT
 from . import errors as E
 from .enums import AxisState, _eMC_STOP_MODE
+from .group_monitor import GroupMonitor, warning_limits
 from .group_motion import GroupMotion
 from .group_planning import GroupPlanning
 from .group_types import (
@@ -67,7 +69,7 @@ _VERDICT: dict[str, tuple[str | int, ...]] = {
 }
 
 
-class AxesGroup(GroupMotion, GroupPlanning):
+class AxesGroup(GroupMotion, GroupPlanning, GroupMonitor):
     def __init__(self, module: MotionModule, config: AxesGroupConfig) -> None:
         self.m = module
         self.config = config
@@ -98,6 +100,10 @@ class AxesGroup(GroupMotion, GroupPlanning):
         self.cmd_vel = 0.0
         self.cmd_accdec = 0.0
         self._last_point: tuple[float, ...] | None = None
+        self.in_pos_waiting = False  # Details.InPosWaiting (group_monitor.py, D103)
+        self.observations: dict[int, bool] = {}  # active observation codes (Obsr): interpolation warnings (D104)
+        self.warn_limits = warning_limits(self.op)
+        self.warn_on = any(v > 0 for v in self.warn_limits)
 
     # ------------------------------------------------------------------ helpers
     @property
@@ -174,6 +180,9 @@ class AxesGroup(GroupMotion, GroupPlanning):
         m.moving_groups.pop(self.number, None)
         self.sync_target = None
         self.cmd_vel = self.cmd_accdec = 0.0
+        self.clear_member_flags()
+        if self.observations:
+            self.check_warnings()
 
     # ------------------------------------------------------------------ errors
     def raise_error(self, code: int, *, source: str | None = None, detail: str = "", immediate: bool = False) -> None:
@@ -263,15 +272,12 @@ class AxesGroup(GroupMotion, GroupPlanning):
 
     # ------------------------------------------------------------------ MC_GroupReset
     def reset(self) -> bool:
-        """Clears the group error and (while the group is enabled) the errors of its axes. False (Failure) while the
-        group or an axis still decelerates because of an error."""
-        cur = self.current
-        if cur is not None and cur.kind == JobKind.GROUP_STOP and cur.owner is None and cur.running:
+        """Clears the group error and observations and (while the group is enabled) the errors of its axes. False
+        (Failure) while the group or an axis still decelerates because of an error, or an axis error's cause persists
+        (`reset_failure_cause`). The drive error reset runs before this (MC_GroupReset, D108)."""
+        if self.reset_failure_cause():
             return False
-        for a in self.axes:
-            c = a.current
-            if a.state == AxisState.ErrorStop and c is not None and c.kind == JobKind.ERROR_STOP and c.running:
-                return False
+        self.observations.clear()
         if self.enabled:
             for a in self.axes:
                 if a.error_code or a.state == AxisState.ErrorStop or a.observations:
@@ -282,8 +288,6 @@ class AxesGroup(GroupMotion, GroupPlanning):
             self._set_state(self._rest_state())
             self.m.log_info(None, f"axes group error reset on {self.name}", group=self.name)
         return True
-
-
 
     def immediate_stop(self, source: str) -> None:
         """MC_GroupImmediateStop: every axis stops by its [Immediate stop input stop method]; ErrorStop with 5486."""
@@ -325,10 +329,10 @@ class AxesGroup(GroupMotion, GroupPlanning):
         return {
             "name": self.name,
             "Status": {"Ready": ready, **{s.name: st == s for s in G}},
-            "Details": {"Idle": not busy, "InPosWaiting": False},
+            "Details": {"Idle": not busy and not self.in_pos_waiting, "InPosWaiting": self.in_pos_waiting},
             "Cmd": {"Vel": self.cmd_vel, "AccDec": self.cmd_accdec},
             "MFaultLvl": {"Active": self.error_code != 0, "Code": f"{self.error_code:04X}"},
-            "Obsr": {"Active": False, "Code": "0000"},
+            "Obsr": {"Active": bool(self.observations), "Code": f"{self.obsr_code:04X}"},
             "Cfg": {"GrpNo": self.number, "GrpEnable": "_mcUsedGroup", "ExecID": 1},
             "Kinematics": {"GrpType": self.config.composition.name,
                            "Axis": [a.number for a in self.axes] + [0] * (4 - len(self.axes))},

@@ -1,6 +1,7 @@
 """The period of a group (mixed into `AxesGroup`): evaluate s(t) of the running path and write the composition
-axes' command positions, blended hand-over and corner superimposition, the end of a move, MC_GroupStop's
-deceleration along the path, and MC_GroupSyncMoveAbsolute.
+axes' command positions, blended hand-over (with the Dec = 0 rule, D105) and corner superimposition, the end of a
+move (with the in-position check of `group_monitor.py`, D103), MC_GroupStop's deceleration along the path, and
+MC_GroupSyncMoveAbsolute (with `Details.VelLimit`, D107).
 
 Every period `step` evaluates s(t) — a few float operations — and writes the composition axes' command positions, so
 the generic command-value stage of the MC module derives Cmd.Vel/AccDec from them. Spec: `omron-group-and-cam.md`
@@ -35,6 +36,7 @@ class GroupMotion:
     sync_target: tuple[float, ...] | None
     cmd_vel: float
     cmd_accdec: float
+    warn_on: bool
 
     # ------------------------------------------------------------------ MC_GroupStop / MC_GroupImmediateStop
     def stop(self, job: Job) -> None:
@@ -71,6 +73,7 @@ class GroupMotion:
         assert mv is not None
         if self.overlap is not None:
             self._freeze_overlap()
+        self.clear_member_flags()  # a stop while waiting for in-position: no in-position check on stop (§4.7)
         t0 = self.m.cycle * self.m.period_s
         seg = self.m.planner.stop(p0=mv.s, v0=mv.sd, a0=mv.sdd, deceleration=dec, jerk=jerk)
         self.motion = Motion(job, mv.path, seg, t0, velocity=0.0, s=mv.s, sd=mv.sd, sdd=mv.sdd, stopping=True)
@@ -119,7 +122,8 @@ class GroupMotion:
             # previous profile ended (path velocity continuous; the axes' velocities may jump at the corner)
             self._end_job(job, JobStatus.DONE)
             self.queue.pop(0)
-            code = self._begin(nxt, _Pos(mv.path.end), t0=mv.t0 + seg.duration, v0=mv.v_end, pushed=True)
+            code = self._begin(nxt, _Pos(mv.path.end), t0=mv.t0 + seg.duration, v0=mv.v_end, pushed=True,
+                               instant=mv.instant)
             if code:
                 self.raise_error(code, source=nxt.owner.label if nxt.owner is not None else None)
                 return
@@ -163,6 +167,8 @@ class GroupMotion:
             pa[i] = acc[k]
         self.cmd_vel = sd if ov is None else math.sqrt(sum(v * v for v in vel))
         self.cmd_accdec = sdd
+        if self.warn_on:
+            self.check_warnings()
         if ended and self.overlap is None:
             mv.end_cycle = cycle  # the final command value is output in this period; the end shows in the next
 
@@ -192,13 +198,18 @@ class GroupMotion:
 
     def _finish(self, mv: Motion, cycle: int) -> None:
         """The period after the final command value: the instruction is Done (positioning complete / stop
-        complete); a buffered successor takes over (its profile starts in the next period)."""
+        complete) — a move once its composition axes are in position (D103); a buffered successor takes over (its
+        profile starts in the next period)."""
         job = mv.job
-        self.motion = None
         for i in self.idx:
             self.m.prof_vel[i] = 0.0
             self.m.prof_acc[i] = 0.0
         self.cmd_vel = self.cmd_accdec = 0.0
+        if self.observations:
+            self.check_warnings()
+        if job.kind == JobKind.GROUP_MOVE and self._in_position_pending(mv, cycle):
+            return  # Done waits for the in-position check of the composition axes (D103)
+        self.motion = None
         self._end_job(job, JobStatus.DONE)
         if job.kind == JobKind.GROUP_STOP:
             if job.owner is None:
@@ -257,7 +268,9 @@ class GroupMotion:
             cur = float(m.cmd_pos[i])
             step = a.params.Operation.MaxVel * T
             d = target[k] - cur
-            new = target[k] if abs(d) <= step else cur + math.copysign(step, d)
+            saturated = abs(d) > step
+            new = cur + math.copysign(step, d) if saturated else target[k]
+            a.vel_limit = saturated  # Details.VelLimit while the step is cut to Maximum Velocity (§4.12, D107)
             m.cmd_pos[i] = new
             m.prof_vel[i] = (new - cur) / T
             m.prof_acc[i] = 0.0

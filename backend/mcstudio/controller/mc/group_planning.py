@@ -5,6 +5,12 @@ clamp, and re-planning on an override change.
 Group motion is a path (`group_path.py`) and a 1-D profile s(t) along it, planned once per move with the axis planner
 (`profile.Planner`: trapezoid when Jerk = 0, S-curve otherwise) and re-planned only on events (blending successor,
 override, MC_GroupStop). Spec: `omron-group-and-cam.md` §4.3 (BufferMode, TransitionMode), §4.6; decisions D50–D56.
+
+* Deceleration = 0 with a blending successor (§4.3 velocity profile): no stop — the move keeps its velocity to its end
+  and the successor starts at its own target velocity ("the velocity changes instantly", D105).
+* Acceleration/Deceleration Over of the group (`InterpolationAccDecOver`, D106): a profile that would pass the end of
+  its path (an Aborting multi-execution onto a moving group that cannot stop in time, a blended successor too short
+  for its transit velocity) is 5444 / 5445 with "error stop", otherwise it uses the deceleration it takes ("rapid").
 """
 
 from __future__ import annotations
@@ -89,10 +95,13 @@ class GroupPlanning:
         v, _ = mv.path.velocity(mv.s, mv.sd, mv.sdd)
         return _Pos(self.point(), v)
 
-    def _begin(self, job: Job, start: _Pos, *, t0: float, v0: float | None = None, pushed: bool = False) -> int:
+    def _begin(self, job: Job, start: _Pos, *, t0: float, v0: float | None = None, pushed: bool = False,
+               instant: bool = False) -> int:
         """Plan `job` from `start` and make it current. v0: the path velocity at the start (blending); None = the
-        projection of the current per-axis velocity on the new direction (Aborting; a reversal starts from 0, D54)."""
+        projection of the current per-axis velocity on the new direction (Aborting; a reversal starts from 0, D54).
+        `instant`: the predecessor had Deceleration 0 — start at the target velocity (D105)."""
         m = self.m
+        self.clear_member_flags()
         if job.kind == JobKind.GROUP_SYNC:
             self.halt()
             self.current = job
@@ -111,15 +120,22 @@ class GroupPlanning:
         velocity = self._clamp_velocity(path, job.velocity)
         mv = Motion(job, path, Segments([0.0], [0.0], [0.0], [0.0], [0.0], 0.0, 0.0, 0.0), t0, velocity, s=0.0,
                     sd=v0)
+        if instant:
+            v0 = mv.sd = self._target_velocity(mv)
         nxt = self.queue[0] if self.queue else None
         if nxt is not None and nxt.buffer_mode >= _eMC_BUFFER_MODE._mcBlendingLow:
-            mv.v_end = self._transit(job, nxt)
+            self._set_transit(mv, nxt)
+        prev = self.motion
         self.overlap = None if not pushed else self.overlap
         self.current = job
         self.motion = mv
-        code = self._plan(mv, s0=0.0, v0=v0, a0=0.0, t0=t0)
+        # a profile from a velocity > 0 that cannot stop on the path's end: 5444 for an Aborting multi-execution,
+        # 5445 for a blended successor (with InterpolationAccDecOver = error stop, D106)
+        over = 0 if v0 <= 0.0 else E.E_BLEND_DISTANCE if pushed else E.E_TRAVEL_SHORT
+        code = self._plan(mv, s0=0.0, v0=v0, a0=0.0, t0=t0, over_code=over)
         if code:
-            self.motion = None
+            # the error stop (raise_error by the caller) decelerates along the path the group was following
+            self.motion = prev if not pushed else None
             self.current = None
             return code
         job.status = JobStatus.ACTIVE if pushed else JobStatus.STARTING
@@ -152,6 +168,18 @@ class GroupPlanning:
             jerk = 0.0  # §4.3: with Acceleration or Deceleration 0 the jerk is ignored
         return acc, dec, jerk
 
+    def _set_transit(self, mv: Motion, nxt: Job) -> None:
+        """The end velocity of `mv` for its blending successor `nxt`: the transit velocity of the BufferMode, or, when
+        `mv` has Deceleration 0 (and no corner superimposition), its own velocity up to the end with the successor
+        starting at its target velocity (§4.3: "the velocity changes instantly to the next instruction's target
+        velocity", D105)."""
+        if not nxt.info.get("corner") and self._acc_dec(mv.job)[1] == 0.0:
+            mv.instant = True
+            mv.v_end = self._target_velocity(mv)
+        else:
+            mv.instant = False
+            mv.v_end = self._transit(mv.job, nxt)
+
     def _transit(self, job: Job, nxt: Job) -> float:
         """Transit velocity at the end of `job` for a blending successor (§4.3 BufferMode)."""
         v1, v2 = job.velocity, nxt.velocity
@@ -168,11 +196,13 @@ class GroupPlanning:
             v = max(v1, v2)
         return min(v * self.override, self.op.MaxInterpolationVel)
 
-    def _plan(self, mv: Motion, *, s0: float, v0: float, a0: float, t0: float) -> int:
+    def _plan(self, mv: Motion, *, s0: float, v0: float, a0: float, t0: float, over_code: int = 0) -> int:
         """(Re)plan the profile of `mv` from (s0, v0, a0) at kernel time t0 to its end (or to velocity 0 when the
         override is 0). Returns an ErrorID (5445 when the transit velocity cannot be reached and the interpolation
-        Acc/Dec Over is error stop)."""
+        Acc/Dec Over is error stop; `over_code` when the profile cannot stop on the path's end and it is error stop,
+        else the deceleration it takes is used, D106)."""
         acc, dec, jerk = self._acc_dec(mv.job)
+        error_stop = self.op.InterpolationAccDecOver == _eMC_ACCDECOVER._mcAccDecOverErrorStop
         planner = self.m.planner
         velocity = self._target_velocity(mv)
         length = mv.path.length
@@ -183,8 +213,10 @@ class GroupPlanning:
                 mv.paused = True
             else:
                 mv.paused = False
+                if mv.instant:
+                    mv.v_end = velocity  # Dec = 0 before a blending successor: no deceleration at the end (D105)
                 v_end = self._reachable(mv.v_end, v0, length - s0, acc, dec)
-                if v_end != mv.v_end and self.op.InterpolationAccDecOver == _eMC_ACCDECOVER._mcAccDecOverErrorStop:
+                if v_end != mv.v_end and not mv.instant and error_stop:
                     return E.E_BLEND_DISTANCE
                 mv.v_end = v_end
                 if length - s0 <= 0.0:
@@ -204,6 +236,15 @@ class GroupPlanning:
                     if seg is None:
                         seg = planner.position(p0=s0, v0=v0, a0=a0, target=length, velocity=velocity,
                                                acceleration=acc, deceleration=dec, jerk=jerk, v_end=v_end)
+                    if seg.overshoot:
+                        if over_code and error_stop:
+                            return over_code
+                        # rapid: the deceleration (acceleration) it takes to arrive on the end at v_end
+                        rest = length - s0
+                        need = abs(v0 * v0 - v_end * v_end) / (2.0 * rest) * 1.000001
+                        seg = planner.position(p0=s0, v0=v0, a0=0.0, target=length, velocity=max(velocity, v0),
+                                               acceleration=max(acc, need), deceleration=max(dec, need), jerk=0.0,
+                                               v_end=v_end)
         except PlanningError as err:
             self.m.log_error(0xFFFF, axis=None, source=self.name, detail=str(err), group=self.name)
             return 0xFFFF
@@ -238,10 +279,9 @@ class GroupPlanning:
         cur = self.current
         if mv is None or cur is None or cur.kind != JobKind.GROUP_MOVE or mv.stopping:
             return 0
-        v_t = self._transit(cur, nxt)
         if nxt.info.get("corner"):
             return 0
-        mv.v_end = v_t
+        self._set_transit(mv, nxt)
         if mv.paused:
             return 0
         return self._plan(mv, s0=mv.s, v0=mv.sd, a0=mv.sdd, t0=self.m.cycle * self.m.period_s)

@@ -59,6 +59,7 @@ class Motion:
     stopping: bool = False  # an MC_GroupStop / error deceleration along the path
     paused: bool = False  # override 0: decelerated to velocity 0 and waiting
     t_dec: float = math.inf  # profile time where the final deceleration begins (corner superimposition)
+    instant: bool = False  # Deceleration 0 before a blending successor: it starts at its target velocity (D105)
 
 
 @dataclass(slots=True)

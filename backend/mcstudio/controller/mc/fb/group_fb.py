@@ -114,20 +114,65 @@ class MC_GroupDisable(_GroupOneShot):
 
 
 class MC_GroupReset(_GroupOneShot):
+    """§4.13: composition axes with a drive error get the CiA402 fault reset first, all at once, each until its drive
+    clears or its Drive Error Reset Monitoring Time elapses (Failure if a drive still reports the fault); then the
+    group and axis errors are cleared (MC_Reset's procedure for the members, decision D108)."""
+
     DEF = FBDef(
         name="MC_GroupReset", title="Reset axes group error",
-        summary="Clears the errors of the group and of its composition axes; Failure while they still decelerate.",
+        summary="Clears the errors of the group and of its composition axes (drive errors first, with the Drive Error "
+                "Reset Monitoring Time); Failure while they still decelerate or a drive keeps its fault.",
         kind="execute", inouts=(IO_GROUP,), inputs=(I_EXECUTE,),
         outputs=(O_DONE, O_BUSY, Var("Failure", "BOOL", False, "TRUE when the reset could not be performed"),
                  O_ERROR, O_ERRORID),
         spec=f"{SPEC} §4.13 (seed 000 line 17219)",
     )
 
+    _group: AxesGroup | None = None
+    _deadlines: dict[int, int] | None = None  # axis index → last cycle of its drive error reset
+
     def execute(self, axis: Any) -> None:
-        self.done_next("Done" if axis.reset() else "Failure")
+        group: AxesGroup = axis
+        if group.reset_failure_cause():
+            self.done_next("Failure")
+            return
+        faulted = group.drive_faults()
+        if faulted:
+            m = group.m
+            self._group = group
+            self._deadlines = {}
+            for a in faulted:
+                ms = a.params.OtherOperation.DriveErrorResetMonitoringTime
+                self._deadlines[a.i] = m.cycle + max(1, round(ms * 1e-3 / m.period_s))
+                m.fault_reset_req[a.i] = True
+            m._fault_resets = True
+            return
+        self.done_next("Done" if group.reset() else "Failure")
 
     def reexecute(self, axis: Any) -> None:
-        """Re-execution is ignored (§4.13)."""
+        """Re-execution is ignored (§4.13): a drive error reset in progress continues."""
+
+    def sync_job(self) -> None:
+        group, deadlines = self._group, self._deadlines
+        if group is None or deadlines is None:
+            super().sync_job()
+            return
+        m = group.m
+        for i, last in list(deadlines.items()):
+            if not m.drv_fault[i] or m.cycle >= last:
+                m.fault_reset_req[i] = False
+                del deadlines[i]
+        if deadlines:
+            return
+        self._group = self._deadlines = None
+        still = any(m.drv_fault[a.i] for a in group.axes)
+        self._finish("Failure" if still else ("Done" if group.reset() else "Failure"))
+
+    def on_delete(self) -> None:
+        if self._group is not None and self._deadlines:
+            for i in self._deadlines:
+                self._group.m.fault_reset_req[i] = False
+        super().on_delete()
 
 
 class MC_GroupImmediateStop(_GroupOneShot):
