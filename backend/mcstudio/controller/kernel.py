@@ -278,26 +278,40 @@ class Controller:
             for k, fb in enumerate(fbs):
                 fb._order = k
             self._awake = None
+        # Every call is guarded: an exception inside one instance is contained by that instance (decision D120) and
+        # the pass goes on (a try block costs nothing in Python ≥ 3.11 until something raises).
         if not self.skip_settled:
             for fb in fbs:
-                fb.call()
+                try:
+                    fb.call()
+                except Exception as exc:
+                    fb.contain(exc)
             return
         awake = self._awake
         if awake is not None and mc.fb_wakes == self._awake_wakes:
             w0 = mc.fb_wakes
             for fb in awake:
                 if not fb._asleep:
-                    fb.call()
+                    try:
+                        fb.call()
+                    except Exception as exc:
+                        fb.contain(exc)
                     if mc.fb_wakes != w0:  # woke something: the rest of the pass visits every instance
                         for later in fbs[fb._order + 1:]:
                             if not later._asleep:
-                                later.call()
+                                try:
+                                    later.call()
+                                except Exception as exc:
+                                    later.contain(exc)
                         self._awake = None
                         return
             return
         for fb in fbs:
             if not fb._asleep:
-                fb.call()
+                try:
+                    fb.call()
+                except Exception as exc:
+                    fb.contain(exc)
         # the instances awake now; valid while nothing wakes another one
         self._awake = [fb for fb in fbs if not fb._asleep]
         self._awake_wakes = mc.fb_wakes

@@ -14,6 +14,7 @@ PLCopen) and a new rising edge is needed afterwards.
 from __future__ import annotations
 
 import enum
+import logging
 import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, ClassVar
@@ -387,6 +388,52 @@ class FunctionBlock:
 
     def call(self) -> None:  # pragma: no cover - abstract
         raise NotImplementedError
+
+    # -- fault containment (decision D120): an exception inside one instance's call must not stop the kernel
+    def contain(self, exc: BaseException) -> None:
+        """The kernel caught `exc` from this instance's call: Error TRUE with ErrorID FFFF (emulator-internal, D15),
+        an FFFF0000 event naming the instance and the exception, the axis (or axes group) it commands error-stopped
+        like any instruction error (A-1: deceleration stop), and the instance quarantined — not called again until
+        that error is reset (MC_Reset / MC_GroupReset, or ResetMCError without an axis)."""
+        from ..module import E_INTERNAL  # (module imports the instructions)
+
+        _log.error("%s raised in its call; contained (D120)", self.label, exc_info=exc)
+        detail = f"{type(exc).__name__}: {exc}"[:500]
+        d = self.__dict__
+        target: Any = None
+        try:  # what the instance commands: its axes group, else its (slave) axis
+            inp = self.inp
+            target = self.mc.groups_by_name.get(inp.get("AxesGroup") or "") or d.get("axis")
+            for name in ("Slave", "Axis", "Target"):
+                if target is None and isinstance(inp.get(name), str):
+                    target = self.mc.by_name.get(inp[name])
+        except Exception:  # the instance's own state may be what is broken
+            target = None
+        try:
+            self._set_error(E_INTERNAL, target)
+            if target is not None:
+                target.raise_error(E_INTERNAL, source=self.label, detail=detail)
+            else:
+                self.mc.log_error(E_INTERNAL, axis=None, source=self.label, detail=detail)
+        except Exception:  # never let containment itself take the kernel down
+            _log.exception("containment of %s failed", self.label)
+            self.out["Error"], self.out["ErrorID"] = True, E_INTERNAL
+        if "job" in d:
+            d["job"] = None
+        d["call"] = self._quarantined  # an instance attribute shadows the class's call()
+
+    def _quarantined(self) -> None:
+        """The call of a contained instance: nothing until its error is reset, then the normal call again (a new
+        Execute edge is needed, as after any instruction error)."""
+        if not self._error_released():
+            return
+        del self.__dict__["call"]
+        o = self.out
+        o["Error"], o["ErrorID"] = False, 0
+        self.wake()
+
+
+_log = logging.getLogger(__name__)
 
 
 class ExecuteFB(FunctionBlock):
