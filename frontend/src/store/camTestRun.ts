@@ -101,6 +101,12 @@ export async function stopCamRun(name: string, deceleration: number): Promise<vo
       return !!fb && (fb.outputs.Done === true || fb.outputs.Error === true);
     };
     await until(() => stops.every(done), "the axes to stop", 200);
+    // MC_Stop holds its axis in Stopping while Execute is TRUE (even after Done): drop Execute before deleting the
+    // instances, else the axes stay Stopping and refuse the next motion
+    await Promise.all(stops.map((id) => unwrap(api.PATCH("/api/v1/fb/{fb_id}", {
+      params: { path: { fb_id: id } }, body: { inputs: { Execute: false } } }))));
+    const rest = (a: string) => liveStore.get().axes[a]?.Status.Stopping === false;
+    await until(() => rest(run.master) && rest(run.slave), "the axes to leave Stopping", 100);
   } catch (err) {
     patch(name, { error: err instanceof Error ? err.message : String(err) });
   } finally {
