@@ -333,6 +333,59 @@ export function robotJogRelease(group: string): void {
   j.chain = j.chain.then(() => syncJog(group, { velocity: 0, acceleration: 0, coordSystem: 1, csid: 0 }));
 }
 
+/**
+ * One step (inching) of the TCP: MC_RobotJog Mode 2 moves `distance` mm along the direction of the chosen frame from
+ * Enable↑ and stops (InPosition, or AtBoundary at the workspace boundary); then the enable drops and the group is
+ * Standby again. The lease is renewed while the step runs; a press during a step is ignored (D93).
+ */
+export async function robotJogStep(group: string, dir: string, settings: JogSettings & { distance: number }): Promise<void> {
+  let j = jogs.get(group);
+  if (!j) {
+    j = { want: null, chain: Promise.resolve() };
+    jogs.set(group, j);
+  }
+  if (j.want !== null) return;
+  j.want = dir;
+  patchGroup(group, { jogHeld: dir });
+  let id: number | null = null;
+  try {
+    const prev = groupCommands(groupCommandsStore.get(), group).jogId;
+    if (prev !== null && fbOut(prev)?.Busy === true) {
+      await jogInstance(group, { Enable: false });
+      await waitFor(() => fbOut(prev)?.Busy !== true, 3000);
+    }
+    id = await jogInstance(group, {
+      Enable: true, Mode: 2, Direction: DIRS[dir], Distance: settings.distance, Velocity: settings.velocity,
+      Acceleration: settings.acceleration, CoordSystem: settings.coordSystem, CSID: settings.csid,
+    });
+    leased.add(id);
+    updateHeartbeat();
+    const sid = id;
+    // Enable↑ is seen in the next period: wait for the step to start, then for its end
+    await waitFor(() => fbOut(sid)?.Busy === true || fbOut(sid)?.Error === true, 2000);
+    const end = () => {
+      const o = fbOut(sid);
+      return o?.InPosition === true || o?.AtBoundary === true || o?.Error === true || o?.CommandAborted === true
+        || o?.Busy !== true;
+    };
+    await waitFor(end, 30000);
+  } catch (err) {
+    notifyError("Cartesian jog step (MC_RobotJog)", err);
+  } finally {
+    if (id !== null) {
+      leased.delete(id);
+      updateHeartbeat();
+      try {
+        await patchFb(id, { Enable: false });
+      } catch {
+        /* the lease drops the enable anyway */
+      }
+    }
+    j.want = null;
+    patchGroup(group, { jogHeld: null });
+  }
+}
+
 // ------------------------------------------------------------------ ready pose and the pick-and-place demo
 
 function sleep(ms: number): Promise<void> {

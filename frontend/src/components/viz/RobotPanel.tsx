@@ -1,46 +1,10 @@
 import { Alert, Badge, Code, Group, Loader, Paper, ScrollArea, Stack, Table, Text, Title } from "@mantine/core";
 import { IconAlertTriangle, IconRobot } from "@tabler/icons-react";
-import { useEffect, useState } from "react";
-import { api, unwrap } from "../../api/client";
-import type { RobotOut, RobotsOut } from "../../api/types";
+import type { RobotOut } from "../../api/types";
 import { useGroup } from "../../store/groupCommands";
 import { GroupControls, LastGroupInstruction } from "../group/GroupControls";
 import { RobotJogPanel } from "../group/RobotJogPanel";
-
-const POLL_MS = 200;
-
-/** GET /viz/robots every POLL_MS while `active` and the page is visible. */
-export function useRobots(active: boolean): { data: RobotsOut | null; error: string | null } {
-  const [data, setData] = useState<RobotsOut | null>(null);
-  const [error, setError] = useState<string | null>(null);
-  useEffect(() => {
-    if (!active) return;
-    let alive = true;
-    let busy = false;
-    const tick = async () => {
-      if (busy || document.visibilityState !== "visible") return;
-      busy = true;
-      try {
-        const r = await unwrap(api.GET("/api/v1/viz/robots"));
-        if (alive) {
-          setData(r);
-          setError(null);
-        }
-      } catch (err) {
-        if (alive) setError(err instanceof Error ? err.message : String(err));
-      } finally {
-        busy = false;
-      }
-    };
-    void tick();
-    const t = setInterval(() => void tick(), POLL_MS);
-    return () => {
-      alive = false;
-      clearInterval(t);
-    };
-  }, [active]);
-  return { data, error };
-}
+import { useRobots } from "./useRobots";
 
 function fmt(v: number | null | undefined, digits = 3): string {
   return v === null || v === undefined ? "—" : v.toFixed(digits);
@@ -131,20 +95,20 @@ function RobotCard({ robot }: { robot: RobotOut }) {
       <Text size="xs" c="dimmed">
         Rf {k.Rf} · Rm {k.Rm} · Lf {k.Lf} · Lm {k.Lm} mm · θ {k.theta}°
       </Text>
-      <RobotTestRun name={robot.group} />
+      <RobotTestRun name={robot.group} coordSystems={robot.coord_systems} />
     </Stack>
   );
 }
 
 /** The group test run of the robot next to the 3D view: state buttons, Cartesian jog, the demo sequence. */
-function RobotTestRun({ name }: { name: string }) {
+function RobotTestRun({ name, coordSystems }: { name: string; coordSystems: RobotOut["coord_systems"] }) {
   const group = useGroup(name);
   if (!group) return null;
   return (
     <Stack gap={8} pt={6} style={{ borderTop: "1px solid var(--mantine-color-gray-3)" }} data-testid="robot-testrun">
       <Title order={6}>Test run</Title>
       <GroupControls group={group} compact />
-      <RobotJogPanel group={group} />
+      <RobotJogPanel group={group} coordSystems={coordSystems} />
       <LastGroupInstruction group={name} />
     </Stack>
   );
