@@ -6,7 +6,7 @@ from .admin import ADMIN_CLASSES
 from .base import FunctionBlock
 from .cam_fb import CAM_CLASSES
 from .common import COMMON_CLASSES
-from .group_fb import GROUP_CLASSES
+from .group_motion_fb import GROUP_CLASSES
 from .homing_fb import HOMING_CLASSES
 from .latch import LATCH_CLASSES
 from .robot_fb import ROBOT_CLASSES
@@ -20,7 +20,7 @@ from .torque import TORQUE_CLASSES
 ALL_CLASSES: tuple[type[FunctionBlock], ...] = (*FB_CLASSES, *ADMIN_CLASSES, *HOMING_CLASSES, *COMMON_CLASSES,
                                                 *LATCH_CLASSES, *TORQUE_CLASSES, *SYNC_CLASSES,
                                                 *CAM_CLASSES, *TIMESTAMP_CLASSES)
-ALL_CLASSES = (*ALL_CLASSES, *GROUP_CLASSES)  # axes-group instructions (group_fb.py)
+ALL_CLASSES = (*ALL_CLASSES, *GROUP_CLASSES)  # axes-group instructions (group_fb.py, group_motion_fb.py)
 ALL_CLASSES = (*ALL_CLASSES, *ROBOT_CLASSES)  # robot instructions (robot_fb.py)
 ALL_CLASSES = (*ALL_CLASSES, *ROBOT_MOTION_CLASSES)  # robot motion instructions (robot_motion_fb.py)
 ALL_CLASSES = (*ALL_CLASSES, *ROBOT_JOG_CLASSES)  # MC Studio extension: Cartesian jog (robot_jog.py)
