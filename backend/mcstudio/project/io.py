@@ -183,6 +183,9 @@ def atomic_write(path: Path, text: str | bytes, *, keep_backup: bool = True) -> 
             bak_tmp.unlink(missing_ok=True)
             os.link(path, bak_tmp)
             os.replace(bak_tmp, bak)
+            # rename() does nothing when both names are links to one file (a save killed after this step left the
+            # backup linked to the current document): then the temporary name is still there
+            bak_tmp.unlink(missing_ok=True)
         os.replace(tmp, path)
         _fsync_dir(folder)
     except BaseException:
