@@ -7,8 +7,11 @@ from typing import Any
 
 from fastapi import FastAPI, Request
 from fastapi.encoders import jsonable_encoder
+from fastapi.exception_handlers import http_exception_handler
 from fastapi.exceptions import RequestValidationError
-from fastapi.responses import JSONResponse
+from fastapi.responses import JSONResponse, Response
+from starlette.exceptions import HTTPException as StarletteHTTPException
+from starlette.formparsers import MultiPartException
 
 from ..controller.kernel import KernelError
 from ..controller.mc.fb.base import FBInputError
@@ -32,7 +35,27 @@ def _finite(v: Any) -> Any:
     return v
 
 
+# FastAPI's answer to a JSON body it cannot decode (not UTF-8, …); it carries no `loc`.
+_BODY_PARSE_ERROR = "There was an error parsing the body"
+
+
+def _body_unreadable(exc: StarletteHTTPException) -> bool:
+    """A 400 raised while FastAPI/Starlette read the body (undecodable JSON, malformed multipart), not by a route."""
+    return exc.status_code == 400 and (
+        exc.detail == _BODY_PARSE_ERROR or isinstance(exc.__context__, MultiPartException)
+    )
+
+
 def install(app: FastAPI) -> None:
+    @app.exception_handler(StarletteHTTPException)
+    async def _http(request: Request, exc: StarletteHTTPException) -> Response:
+        # An unreadable body is a 422 naming the body, like FastAPI's own answer to malformed JSON (found by the
+        # API fuzzing, docs/hardening.md); every other HTTPException keeps FastAPI's handling.
+        if _body_unreadable(exc):
+            msg = "the body cannot be read" + ("" if exc.detail == _BODY_PARSE_ERROR else f": {exc.detail}")
+            return JSONResponse(status_code=422, content={"detail": [_err(["body"], msg, "body_unreadable")]})
+        return await http_exception_handler(request, exc)
+
     @app.exception_handler(RequestValidationError)
     async def _validation(_: Request, exc: RequestValidationError) -> JSONResponse:
         # FastAPI's own 422, except that a non-finite input no longer turns it into a 500

@@ -29,7 +29,8 @@ def put_mode(body: ModeIn, studio: Studio = Depends(get_studio)) -> ControllerSt
     summary="Run cycles while paused",
     description="Runs `cycles` control periods (only while paused) and stops early after the first cycle in which "
     "`until` holds (an instance output equals the given value). Returns the status after the last cycle.",
-    responses={409: {"description": "The controller is not paused"}},
+    responses={404: {"description": "`until.fb` names no instance"},
+               409: {"description": "The controller is not paused"}},
 )
 def post_step(body: StepIn, studio: Studio = Depends(get_studio)) -> StepOut:
     if studio.runner.mode != "paused":

@@ -191,7 +191,8 @@ def get_ethercat(studio: Studio = Depends(get_studio)) -> EtherCATOut:
 
 
 @router.get("/ethercat/slaves/{address}/image", response_model=ImageOut,
-            summary="The slave's process image bytes as they last travelled on the wire")
+            summary="The slave's process image bytes as they last travelled on the wire",
+            responses={404: {"description": "No such slave"}})
 def get_image(address: int, studio: Studio = Depends(get_studio)) -> ImageOut:
     def view(c: Controller) -> ImageOut:
         k = c.network.index_of_node.get(address)
@@ -273,7 +274,8 @@ def list_devices(studio: Studio = Depends(get_studio)) -> list[DeviceSummary]:
     return [_summary(d) for d in studio.library.devices.values()]
 
 
-@router.get("/devices/{device_id}", response_model=DeviceDescription, summary="One device description")
+@router.get("/devices/{device_id}", response_model=DeviceDescription, summary="One device description",
+            responses={404: {"description": "No such device in the library"}})
 def get_device(device_id: str, studio: Studio = Depends(get_studio)) -> DeviceDescription:
     d = studio.library.get(device_id)
     if d is None:
