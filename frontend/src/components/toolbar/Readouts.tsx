@@ -1,4 +1,5 @@
 import { Group, Stack, Text, Tooltip } from "@mantine/core";
+import { useMediaQuery } from "@mantine/hooks";
 import type { ReactNode } from "react";
 import { useLive } from "../../hooks/useLive";
 import { fixed } from "../../lib/format";
@@ -26,20 +27,30 @@ export function Readouts() {
   const taskMaxUs = useLive((s) => s.controller?.cycle_time_max_us ?? null);
   const periodUs = useLive((s) => (s.controller ? s.controller.period_s * 1e6 : null));
   const live = useLive((s) => s.ws === "live");
+  // at 1366 px the header also holds the project and control buttons: tighter, overruns in the RTF tooltip
+  const wide = useMediaQuery("(min-width: 1600px)", true);
   return (
-    <Group gap="md" wrap="nowrap" style={{ opacity: live ? 1 : 0.45 }} title={live ? undefined : "Stale: not connected"}>
-      <Readout label="Cycle" testId="cycle" w={78}>
+    <Group gap={wide ? "md" : 10} wrap="nowrap" style={{ opacity: live ? 1 : 0.45 }}
+      title={live ? undefined : "Stale: not connected"}>
+      <Readout label="Cycle" testId="cycle" w={wide ? 78 : 66}>
         {cycle ?? "—"}
       </Readout>
-      <Readout label="Sim. time [s]" testId="sim-time" w={84}>
+      <Readout label="Sim. time [s]" testId="sim-time" w={wide ? 84 : 78}>
         {fixed(time, 3)}
       </Readout>
-      <Readout label="RTF" testId="rtf" w={44}>
-        {fixed(rtf, 2)}
-      </Readout>
-      <Readout label="Overruns" testId="overruns" w={58}>
-        {overruns ?? "—"}
-      </Readout>
+      <Tooltip label={`Real-time factor (simulated ÷ wall-clock time); overruns: ${overruns ?? "—"} periods that finished after their deadline`}
+        openDelay={300} multiline w={260}>
+        <div>
+          <Readout label="RTF" testId="rtf" w={36}>
+            {fixed(rtf, 2)}
+          </Readout>
+        </div>
+      </Tooltip>
+      {wide && (
+        <Readout label="Overruns" testId="overruns" w={58}>
+          {overruns ?? "—"}
+        </Readout>
+      )}
       <Tooltip
         label={
           taskUs && periodUs
@@ -50,7 +61,7 @@ export function Readouts() {
         openDelay={300}
       >
         <div>
-          <Readout label="Task" testId="task-time" w={64}>
+          <Readout label="Task" testId="task-time" w={wide ? 64 : 58}>
             {taskUs ? fixed(taskUs, 0) : "—"} <span className="unit">µs</span>
           </Readout>
         </div>
