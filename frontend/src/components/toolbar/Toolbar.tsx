@@ -1,16 +1,11 @@
-import { ActionIcon, Box, Button, Divider, Group, Menu, Modal, SegmentedControl, Text, Tooltip } from "@mantine/core";
-import {
-  IconDeviceFloppy,
-  IconFolderOpen,
-  IconPlayerSkipForward,
-  IconRefresh,
-  IconSettingsAutomation,
-} from "@tabler/icons-react";
+import { Button, Divider, Group, Modal, SegmentedControl, Text, Tooltip } from "@mantine/core";
+import { IconPlayerSkipForward, IconRefresh, IconSettingsAutomation } from "@tabler/icons-react";
 import { useState } from "react";
 import { api, unwrap } from "../../api/client";
-import type { ControllerMode, ProjectInfo } from "../../api/types";
+import type { ControllerMode } from "../../api/types";
 import { useLive } from "../../hooks/useLive";
 import { notifyError, notifyOk } from "../../lib/notify";
+import { ProjectBar } from "../project/ProjectBar";
 import { HelpPopover } from "./HelpPopover";
 import { Readouts } from "./Readouts";
 import { WsIndicator } from "./WsIndicator";
@@ -20,103 +15,6 @@ const MODES: { value: ControllerMode; label: string }[] = [
   { value: "fast", label: "Fast" },
   { value: "paused", label: "Paused" },
 ];
-
-function ProjectName() {
-  const name = useLive((s) => s.controller?.project ?? null);
-  const dirty = useLive((s) => s.controller?.project_dirty ?? false);
-  return (
-    <Group gap={6} wrap="nowrap" maw={220} data-testid="project-name">
-      <Text size="sm" fw={600} truncate="end" title={name ?? undefined}>
-        {name ?? "—"}
-      </Text>
-      {dirty && (
-        <Tooltip label="Unsaved changes">
-          <Box
-            data-testid="project-dirty"
-            w={8}
-            h={8}
-            style={{ borderRadius: "50%", background: "var(--mantine-color-orange-6)", flex: "none" }}
-          />
-        </Tooltip>
-      )}
-    </Group>
-  );
-}
-
-function SaveButton() {
-  const [busy, setBusy] = useState(false);
-  const dirty = useLive((s) => s.controller?.project_dirty ?? false);
-  const save = async () => {
-    setBusy(true);
-    try {
-      const out = await unwrap(api.POST("/api/v1/project/save"));
-      notifyOk("Project saved", out.path);
-    } catch (err) {
-      notifyError("Save project", err);
-    } finally {
-      setBusy(false);
-    }
-  };
-  return (
-    <Button
-      variant={dirty ? "filled" : "default"}
-      leftSection={<IconDeviceFloppy size={14} />}
-      loading={busy}
-      onClick={save}
-      data-testid="save-project"
-    >
-      Save
-    </Button>
-  );
-}
-
-function OpenProjectMenu() {
-  const [projects, setProjects] = useState<ProjectInfo[] | null>(null);
-  const load = async () => {
-    try {
-      setProjects(await unwrap(api.GET("/api/v1/projects")));
-    } catch (err) {
-      notifyError("List projects", err);
-    }
-  };
-  const open = async (name: string) => {
-    try {
-      const p = await unwrap(api.POST("/api/v1/projects/open", { body: { name } }));
-      notifyOk("Project opened", p.name);
-    } catch (err) {
-      notifyError("Open project", err);
-    }
-  };
-  return (
-    <Menu position="bottom-start" onOpen={() => void load()} withinPortal shadow="md">
-      <Menu.Target>
-        <Tooltip label="Open project">
-          <ActionIcon aria-label="Open project" data-testid="open-project">
-            <IconFolderOpen size={18} />
-          </ActionIcon>
-        </Tooltip>
-      </Menu.Target>
-      <Menu.Dropdown miw={240}>
-        <Menu.Label>Projects folder</Menu.Label>
-        {projects === null && <Menu.Item disabled>Loading…</Menu.Item>}
-        {projects?.length === 0 && <Menu.Item disabled>No projects found</Menu.Item>}
-        {projects?.map((p) => (
-          <Menu.Item
-            key={p.name}
-            disabled={!p.valid || p.current}
-            onClick={() => void open(p.name)}
-            rightSection={p.current ? <Text size="xs" c="dimmed">open</Text> : undefined}
-          >
-            <Text size="sm">{p.title}</Text>
-            <Text size="xs" c={p.valid ? "dimmed" : "red"}>
-              {p.valid ? p.name : (p.error ?? "invalid")}
-            </Text>
-          </Menu.Item>
-        ))}
-      </Menu.Dropdown>
-    </Menu>
-  );
-}
 
 function ModeSwitch() {
   const mode = useLive((s) => s.controller?.mode ?? null);
@@ -227,11 +125,7 @@ export function Toolbar() {
           </Text>
         </Group>
         <Divider orientation="vertical" />
-        <ProjectName />
-        <Group gap={4} wrap="nowrap">
-          <SaveButton />
-          <OpenProjectMenu />
-        </Group>
+        <ProjectBar />
         <Divider orientation="vertical" />
         <ModeSwitch />
         <StepButtons />
