@@ -123,7 +123,8 @@ class Var:
             return v
         if t in INT_RANGES:
             lo, hi = INT_RANGES[t]
-            if isinstance(value, bool) or not isinstance(value, int | float) or float(value) != int(value):
+            if (isinstance(value, bool) or not isinstance(value, int | float)
+                    or (isinstance(value, float) and not value.is_integer())):  # (NaN and ±inf are not integers)
                 raise FBInputError(self.name, f"expected an integer ({t}), got {value!r}")
             v = int(value)
             if not lo <= v <= hi:
