@@ -91,8 +91,10 @@ function ResetController() {
     <>
       <Tooltip label="Reset controller (reload the project, cycle 0)">
         <Button variant="default" color="red" leftSection={<IconRefresh size={14} />} onClick={() => setOpen(true)}
-          data-testid="controller-reset">
-          Reset
+          data-testid="controller-reset" aria-label="Reset controller" px={10}>
+          <Text span inherit visibleFrom="xl">
+            Reset
+          </Text>
         </Button>
       </Tooltip>
       <Modal opened={open} onClose={() => setOpen(false)} title="Reset the controller?" size="sm" centered>
@@ -120,7 +122,8 @@ export function Toolbar() {
       <Group gap="sm" wrap="nowrap" style={{ minWidth: 0 }}>
         <Group gap={6} wrap="nowrap">
           <IconSettingsAutomation size={22} color="var(--mantine-color-blue-6)" />
-          <Text fw={700} size="md" style={{ whiteSpace: "nowrap" }}>
+          {/* below 1408 px (Mantine xl) the header needs the room for the project and control buttons */}
+          <Text fw={700} size="md" style={{ whiteSpace: "nowrap" }} visibleFrom="xl">
             MC Studio
           </Text>
         </Group>
