@@ -11,12 +11,14 @@ import { App } from "./App";
 import { startAxisConfig } from "./store/axisConfig";
 import { startCatalog } from "./store/catalog";
 import { startCommands } from "./store/commands";
+import { startControl } from "./store/control";
 import { startEthercat } from "./store/ethercat";
 import { startEvents } from "./store/events";
 import { startLive } from "./store/live";
 import { theme } from "./theme";
 
 // Module-level services: they live as long as the page (not tied to React mounts).
+startControl();
 startLive();
 startCatalog();
 startAxisConfig();

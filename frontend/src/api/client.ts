@@ -10,6 +10,38 @@ import type { ValidationError } from "./types";
 
 export const api = createClient<paths>({ baseUrl: "" });
 
+/** Header naming this page as a client of the controller: who holds test-run control (backend api/control.py). */
+export const CLIENT_HEADER = "X-MCStudio-Client";
+
+function newClientId(): string {
+  const bytes = new Uint8Array(12);
+  crypto.getRandomValues(bytes); // (crypto.randomUUID needs a secure context; the studio may be served over http)
+  return "b-" + Array.from(bytes, (b) => b.toString(16).padStart(2, "0")).join("");
+}
+
+/** This page's client id: one per page load (a reloaded or second tab is another client). */
+export const CLIENT_ID = newClientId();
+
+type StatusListener = (status: number) => void;
+const statusListeners = new Set<StatusListener>();
+
+/** Called with the status of every API response that is 401 (token needed) or 423 (another client holds control). */
+export function onApiStatus(listener: StatusListener): () => void {
+  statusListeners.add(listener);
+  return () => statusListeners.delete(listener);
+}
+
+api.use({
+  onRequest({ request }) {
+    request.headers.set(CLIENT_HEADER, CLIENT_ID);
+    return request;
+  },
+  onResponse({ response }) {
+    if (response.status === 401 || response.status === 423) for (const l of [...statusListeners]) l(response.status);
+    return response;
+  },
+});
+
 /** An HTTP error response of the API: `{"detail": string | ValidationError[]}`. */
 export class ApiError extends Error {
   readonly status: number;

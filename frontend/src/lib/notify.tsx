@@ -5,8 +5,10 @@ import { ApiError } from "../api/client";
 const REJECTED: Record<number, string> = {
   400: "Bad request",
   404: "Not found",
+  401: "Access token needed",
   409: "Not possible now",
   422: "Invalid input",
+  423: "Read-only: another client has test-run control",
 };
 
 /** Show a failed API call as a notification: the message and, for field errors, the field (`loc`). */

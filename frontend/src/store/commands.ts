@@ -16,6 +16,7 @@
 import { ApiError, api, unwrap } from "../api/client";
 import type { FBOut } from "../api/types";
 import { notifyError } from "../lib/notify";
+import { onControlLost } from "./control";
 import { createStore } from "./createStore";
 import { liveStore, onEpoch, onFrame, sendHeartbeat } from "./live";
 
@@ -280,6 +281,8 @@ async function syncJog(axis: string): Promise<void> {
       j.want = null;
       patchAxis(axis, { jogHeld: null });
       updateHeartbeat();
+    } else if (err instanceof ApiError && err.status === 423) {
+      return; // a release after control passed to another client: the server already dropped the enable
     }
     notifyError("Jog", err);
   }
@@ -314,6 +317,17 @@ export function jogRelease(axis: string): void {
 
 export function releaseAllJogs(): void {
   for (const [axis, j] of jogs) if (j.want !== null) jogRelease(axis);
+}
+
+/** Control passed to another client: the server dropped this page's jog enables; forget what is held here. */
+function forgetJogs(): void {
+  for (const [axis, j] of jogs) {
+    if (j.want === null && j.sent === null) continue;
+    j.want = null;
+    j.sent = null;
+    patchAxis(axis, { jogHeld: null });
+  }
+  updateHeartbeat();
 }
 
 // ------------------------------------------------------------------ override (MC_SetOverride)
@@ -405,6 +419,7 @@ let started = false;
 export function startCommands(): void {
   if (started) return;
   started = true;
+  onControlLost(forgetJogs);
   onFrame((_snap, state) => {
     for (const t of [...tracked.values()]) {
       const out = state.fbs[String(t.id)];

@@ -5,7 +5,19 @@
  * they need (see hooks/useLive.ts). Per-axis history for the charts is kept outside React state, in ring buffers
  * that `onFrame` listeners read.
  */
-import type { AxisVariables, ControllerStatus, EventOut, FBOut, WsHeartbeat, WsSnapshot, WsSubscribe } from "../api/types";
+import { CLIENT_ID } from "../api/client";
+import type {
+  AxisVariables,
+  ControlState,
+  ControllerStatus,
+  EventOut,
+  FBOut,
+  WsHeartbeat,
+  WsPing,
+  WsSnapshot,
+  WsSubscribe,
+} from "../api/types";
+import { applyControl, chosenName, controlStore, setMyName } from "./control";
 import { createStore } from "./createStore";
 
 export type WsStatus = "connecting" | "live" | "offline";
@@ -118,6 +130,7 @@ function recordHistory(snap: WsSnapshot): void {
 
 const SUBSCRIBE: WsSubscribe = { type: "subscribe", rate_hz: 30, axes: null, fbs: null, events: true };
 const STALE_MS = 3500; // the server sends at least one snapshot a second
+const PING_MS = 2000; // the server drops a client it has not heard from for 10 s (decision D117)
 
 let socket: WebSocket | null = null;
 let started = false;
@@ -126,7 +139,10 @@ let lastMessageAt = 0;
 let reconnectTimer: ReturnType<typeof setTimeout> | undefined;
 
 function wsUrl(): string {
-  return `${location.protocol === "https:" ? "wss" : "ws"}://${location.host}/api/v1/ws`;
+  const q = new URLSearchParams({ client: CLIENT_ID });
+  const name = chosenName();
+  if (name) q.set("name", name);
+  return `${location.protocol === "https:" ? "wss" : "ws"}://${location.host}/api/v1/ws?${q}`;
 }
 
 function applySnapshot(snap: WsSnapshot): void {
@@ -148,6 +164,7 @@ function applySnapshot(snap: WsSnapshot): void {
   };
   liveStore.set(next);
   if (replaced) for (const l of [...epochListeners]) l(next.epoch);
+  if (snap.control) applyControl(snap.control);
   if (snap.events.length) for (const l of [...eventsListeners]) l(snap.events);
   for (const l of [...frameListeners]) l(snap, next);
 }
@@ -180,8 +197,16 @@ function connect(): void {
     } catch {
       return;
     }
-    if (typeof data === "object" && data !== null && (data as { type?: unknown }).type === "snapshot") {
+    if (typeof data !== "object" || data === null) return;
+    const type = (data as { type?: unknown }).type;
+    if (type === "snapshot") {
       applySnapshot(data as WsSnapshot);
+    } else if (type === "control") {
+      applyControl(data as ControlState);
+    } else if (type === "hello") {
+      // a new connection (perhaps to a restarted server, whose control versions start again)
+      controlStore.set((s) => ({ ...s, state: null }));
+      setMyName((data as { client: { name: string } }).client.name);
     }
   };
   sock.onclose = () => {
@@ -194,11 +219,21 @@ function connect(): void {
   };
 }
 
+/** Reconnect now (e.g. to tell the server a new display name). */
+export function reconnectLive(): void {
+  if (socket) socket.close();
+}
+
 /** Open the live connection (idempotent; the connection lives as long as the page). */
 export function startLive(): void {
   if (started) return;
   started = true;
   connect();
+  // "Still here": keeps this page's test-run control while it has nothing else to say.
+  const ping: WsPing = { type: "ping" };
+  setInterval(() => {
+    if (socket && socket.readyState === WebSocket.OPEN) socket.send(JSON.stringify(ping));
+  }, PING_MS);
   // Watchdog: a socket that went silent (suspended laptop, dead proxy) is closed and reopened.
   setInterval(() => {
     if (socket && socket.readyState === WebSocket.OPEN && Date.now() - lastMessageAt > STALE_MS) {

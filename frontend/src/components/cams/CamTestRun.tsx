@@ -7,6 +7,7 @@ import { notifyError } from "../../lib/notify";
 import { startCamRun, stopCamRun, useCamRun } from "../../store/camTestRun";
 import { axisHistory, onEpoch, onFrame } from "../../store/live";
 import { Panel } from "../common/Panel";
+import { ControlGuard } from "../control/ControlGuard";
 
 const WINDOW_S = 10;
 const HEIGHT = 140;
@@ -117,6 +118,7 @@ export function CamTestRun({ name, phaseEnd, defaultVelocity, dirty }: {
   };
   const out = camIn?.outputs;
   return (
+    <ControlGuard>
     <Panel title="Test run: slave cams on a master at constant velocity" testId="cam-test-run"
       right={
         <Group gap={4}>
@@ -155,5 +157,6 @@ export function CamTestRun({ name, phaseEnd, defaultVelocity, dirty }: {
           period={phaseEnd} />
       )}
     </Panel>
+    </ControlGuard>
   );
 }

@@ -4,6 +4,7 @@ import { Panel } from "../common/Panel";
 import { GroupControls, LastGroupInstruction } from "./GroupControls";
 import { GroupMoveForm } from "./GroupMoveForm";
 import { RobotJogPanel } from "./RobotJogPanel";
+import { ControlGuard } from "../control/ControlGuard";
 
 const LOGICAL = ["A0", "A1", "A2", "A3"];
 
@@ -46,6 +47,7 @@ export function GroupTestRun({ name }: { name: string }) {
   return (
     <ScrollArea h="100%" data-testid={`group-testrun-${name}`}>
       <Stack gap={10} p="sm" maw={760}>
+        <ControlGuard>
         <Panel title={`${group.name} · ${group.composition} · ${robot ? "Delta3 robot" : "interpolation"}`}>
           <Stack gap={8}>
             <GroupControls group={group} />
@@ -70,6 +72,7 @@ export function GroupTestRun({ name }: { name: string }) {
             Instructions issued from this tab and the 3D view appear here.
           </Text>
         </Panel>
+        </ControlGuard>
       </Stack>
     </ScrollArea>
   );

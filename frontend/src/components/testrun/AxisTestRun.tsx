@@ -14,6 +14,7 @@ import { LastInstructionPanel } from "./LastInstructionPanel";
 import { AxisErrorPanel, PositionPanel, StatusPanel } from "./LivePanels";
 import { MoveForms } from "./MoveForms";
 import { OverridePanel } from "./OverridePanel";
+import { ControlGuard } from "../control/ControlGuard";
 
 const STOP_MODES = [
   { value: "1", label: "StopMode 1" },
@@ -254,5 +255,9 @@ export function AxisTestRun({ axis }: { axis: string }) {
       </Center>
     );
   }
-  return <TestRunBody axis={summary} units={units} />;
+  return (
+    <ControlGuard>
+      <TestRunBody axis={summary} units={units} />
+    </ControlGuard>
+  );
 }

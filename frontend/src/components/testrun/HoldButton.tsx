@@ -1,5 +1,6 @@
 import { Button } from "@mantine/core";
 import type { KeyboardEvent, PointerEvent, ReactNode } from "react";
+import { useReadOnly } from "../../hooks/useControl";
 
 interface HoldButtonProps {
   onPress: () => void;
@@ -18,7 +19,8 @@ const HOLD_KEYS = new Set([" ", "Enter"]);
  * A dead-man button: active only while held with the primary pointer button, or with Space/Enter while focused.
  * Releasing, leaving the button, a cancelled pointer and losing the focus all release it.
  */
-export function HoldButton({ onPress, onRelease, held, disabled, testId, children, leftSection, label }: HoldButtonProps) {
+export function HoldButton({ onPress, onRelease, held, disabled: off, testId, children, leftSection, label }: HoldButtonProps) {
+  const disabled = off || useReadOnly(); // another client holds test-run control
   const down = (e: PointerEvent<HTMLButtonElement>) => {
     if (e.button !== 0 || disabled) return;
     onPress();

@@ -5,6 +5,8 @@ import { api, unwrap } from "../../api/client";
 import type { ControllerMode } from "../../api/types";
 import { useLive } from "../../hooks/useLive";
 import { notifyError, notifyOk } from "../../lib/notify";
+import { ControlGuard } from "../control/ControlGuard";
+import { ControlStatus } from "../control/ControlStatus";
 import { ProjectBar } from "../project/ProjectBar";
 import { HelpPopover } from "./HelpPopover";
 import { Readouts } from "./Readouts";
@@ -130,9 +132,13 @@ export function Toolbar() {
         <Divider orientation="vertical" />
         <ProjectBar />
         <Divider orientation="vertical" />
-        <ModeSwitch />
-        <StepButtons />
-        <ResetController />
+        <ControlGuard hint={false}>
+          <ModeSwitch />
+          <StepButtons />
+          <ResetController />
+        </ControlGuard>
+        <Divider orientation="vertical" />
+        <ControlStatus />
       </Group>
       <Group gap="sm" wrap="nowrap">
         <Readouts />
