@@ -127,7 +127,8 @@ export function ProjectBar() {
               Save as…
             </Menu.Item>
             <Menu.Item leftSection={<IconArrowBackUp size={16} />} onClick={() => setDialog("revert")}
-              disabled={!dirty} data-testid="project-menu-revert">
+              data-testid="project-menu-revert"
+              title="Reload project.json from its folder (also after editing it in another editor)">
               Revert to saved…
             </Menu.Item>
             <Menu.Divider />

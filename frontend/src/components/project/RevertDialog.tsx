@@ -31,11 +31,11 @@ export function RevertDialog({ opened, onClose, dirty }: { opened: boolean; onCl
       <Stack gap="sm">
         <Text size="sm">
           {dirty ? (
-            <>The <b>unsaved changes</b> are discarded and </>
+            <>The <b>unsaved changes</b> are discarded and</>
           ) : (
-            <>There are no unsaved changes; </>
+            <>There are no unsaved changes; if project.json was edited outside the studio, those edits are loaded:</>
           )}
-          the project is reloaded from its folder into a fresh controller at cycle 0, like opening it again:
+          {" "}the project is reloaded from its folder into a fresh controller at cycle 0, like opening it again:
           function-block instances are removed and every axis is disabled. Refused while an axis moves.
         </Text>
         {refusal && <ProblemList refusal={refusal} testId="revert-error" />}
