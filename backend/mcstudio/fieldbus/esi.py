@@ -31,6 +31,9 @@ TX_RANGE = (0x1A00, 0x1BFF)
 DEFAULT_MAX_ENTRIES = 32
 MAX_ENTRY_BITS = 0xFFFF  # the model's bound (`PdoEntryDescription.bit_len`); a CoE mapping entry stores 8 bits
 MAX_WARNINGS = 200
+# Device descriptions per file (decision D122): vendor catalogues hold hundreds of device revisions; a file of tens of
+# thousands of tiny devices would cost ~2.5 kB and ~0.2 ms each to import — refused before reading them.
+MAX_ESI_DEVICES = 10_000
 MAILBOX_PROTOCOLS = ("AoE", "EoE", "CoE", "FoE", "SoE", "VoE")
 SM_TYPES = ("MBoxOut", "MBoxIn", "Outputs", "Inputs")
 # Beckhoff's sync managers for dynamic process data (AX5000 SoE drives: `<Sm …>DynamicOutputs</Sm>`): known, carried
@@ -63,6 +66,9 @@ def parse_esi(data: bytes, source: str = "") -> EsiFile:
     device_els = devices_el.findall("Device") if devices_el is not None else []
     if not device_els:
         raise EsiError("Descriptions/Devices: the file describes no device (no Device element)")
+    if len(device_els) > MAX_ESI_DEVICES:
+        raise EsiError(f"Descriptions/Devices: {len(device_els)} devices; an ESI file may describe at most "
+                       f"{MAX_ESI_DEVICES} (D122)")
     n_modules = len(root.findall("Descriptions/Modules/Module"))
     if n_modules:
         warnings.add(f"Descriptions/Modules: {n_modules} module description(s) not imported (modular devices get "

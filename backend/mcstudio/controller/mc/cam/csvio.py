@@ -53,6 +53,12 @@ class CamCsvError(ValueError):
         super().__init__("; ".join(str(p) for p in problems))
 
 
+def _clip(text: str, n: int = 60, *, quote: bool = True) -> str:
+    """A field or line as an error message quotes it: at most `n` characters (a hostile file can have a 4 MB line)."""
+    head = repr(text[:n]) if quote else text[:n]
+    return head if len(text) <= n else f"{head}… ({len(text)} characters)"
+
+
 def _number(text: str) -> float | str:
     """The value of one field, or the reason it is not a REAL."""
     t = text.strip()
@@ -61,11 +67,11 @@ def _number(text: str) -> float | str:
     try:
         v = float(t)
     except ValueError:
-        return f"{t!r} is not a number"
+        return f"{_clip(t)} is not a number"
     if not math.isfinite(v):
-        return f"{t!r} is not a finite number"
+        return f"{_clip(t)} is not a finite number"
     if abs(v) > _REAL_MAX:
-        return f"{t} is beyond the range of REAL (±3.4e38)"
+        return f"{_clip(t, quote=False)} is beyond the range of REAL (±3.4e38)"
     return v
 
 
@@ -88,7 +94,7 @@ def parse_cam_csv(text: str) -> tuple[np.ndarray, np.ndarray]:
             header_seen = True
             if [f.strip().lower() for f in line.split(",")] != HEADER.split(","):
                 # Without the header the columns are unknown: report only this.
-                raise CamCsvError([CsvProblem(no, f"expected the header {HEADER!r}, found {line!r}")])
+                raise CamCsvError([CsvProblem(no, f"expected the header {HEADER!r}, found {_clip(line)}")])
             continue
         fields = line.split(",")
         if len(fields) != 2:
