@@ -5,8 +5,8 @@ identified by the id it sends in the `X-MCStudio-Client` header (REST) and the `
 WebSocket; it has a display name ("browser 2 · 127.0.0.1" or one the user typed).
 
 * Test-run operations (`TEST_RUN` below) need control: from a client id while nobody holds it they take it
-  (a single browser never sees a lock), from the holder they pass, from anybody else they are refused with 423
-  naming the holder. Without a client id (scripts, CI) they pass only while nobody holds control.
+  (a single browser never sees a lock), from the holder they pass, from any other client they are refused with 423
+  naming the holder. Requests without a client id (scripts, CI: the automation channel) are not arbitrated.
 * Configuration writes that restart the controller (`CONFIGURATION`) are refused the same way while another client
   holds control, but do not take it.
 * Control ends with `POST /control/release`, with a forced take by another client, or when the holder is lost: its
@@ -255,26 +255,24 @@ class ControlRegistry:
             return owned
 
     def admit(self, client_id: str | None, address: str, kind: Kind) -> None:
-        """May this request run? A test-run request from a client id takes free control; raises ControlRefusedError."""
+        """May this request run? A test-run request from a client id takes free control; a request without one always
+        passes; raises ControlRefusedError."""
+        if client_id is None:
+            return  # the automation channel (D116): control arbitrates between clients that name themselves
         with self._lock:
             holder = self._holder
-            if client_id is not None:
-                c = self._ensure(client_id, address, None, "client")
-                if holder == client_id:
-                    return
-                if holder is None:
-                    if kind == "test-run":
-                        self._set_holder(client_id, ControlChange(reason="taken", by=c.name))
-                    return
-            elif holder is None:
+            c = self._ensure(client_id, address, None, "client")
+            if holder == client_id:
                 return
-            assert holder is not None
+            if holder is None:
+                if kind == "test-run":
+                    self._set_holder(client_id, ControlChange(reason="taken", by=c.name))
+                return
             h = self._clients[holder]
             since = time.strftime("%H:%M:%S", time.localtime(self._since))
-            who = "this client" if client_id is not None else f"requests without an {CLIENT_HEADER} header"
             raise ControlRefusedError(
-                f"test-run control is held by '{h.name}' (since {since}): {who} may only watch; take control first "
-                "(the studio's Take button, or POST /api/v1/control/take with force)")
+                f"test-run control is held by '{h.name}' (since {since}): this client may only watch; take control "
+                "first (the studio's Take button, or POST /api/v1/control/take with force)")
 
     def note_instance(self, client_id: str, epoch: int, fb_id: int) -> None:
         """The client created, patched or renewed this instance: its dead-man inputs drop when the client goes."""

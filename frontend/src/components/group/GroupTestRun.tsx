@@ -1,4 +1,6 @@
 import { Center, Loader, ScrollArea, Stack, Table, Text } from "@mantine/core";
+import { useAxisList } from "../../hooks/useLive";
+import { unitLabel } from "../../lib/format";
 import { useGroup } from "../../store/groupCommands";
 import { Panel } from "../common/Panel";
 import { GroupControls, LastGroupInstruction } from "./GroupControls";
@@ -10,6 +12,8 @@ const LOGICAL = ["A0", "A1", "A2", "A3"];
 
 /** Command positions of the composition axes (from GET /api/v1/groups). */
 export function GroupPositions({ axes, cmd }: { axes: string[]; cmd: number[] }) {
+  const list = useAxisList().axes;
+  const unit = (name: string) => unitLabel(list.find((x) => x.name === name)?.units);
   return (
     <Table withRowBorders={false} verticalSpacing={1} horizontalSpacing={4} fz="xs">
       <Table.Tbody>
@@ -24,7 +28,8 @@ export function GroupPositions({ axes, cmd }: { axes: string[]; cmd: number[] })
               </Text>
             </Table.Td>
             <Table.Td ta="right" ff="monospace">
-              {cmd[k] !== undefined ? cmd[k].toFixed(3) : "—"}
+              {cmd[k] !== undefined ? cmd[k].toFixed(3) : "—"}{" "}
+              <span className="unit">{unit(a)}</span>
             </Table.Td>
           </Table.Tr>
         ))}
