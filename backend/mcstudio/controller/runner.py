@@ -39,6 +39,8 @@ FAST_SLICE_S = 0.004  # fast mode: run cycles for this long, then serve requests
 PUBLISH_INTERVAL_S = 1 / 120  # snapshots in running modes at most this often (and after every request)
 RTF_WINDOW_S = 0.5
 REALTIME_LEAD_S = 0.050  # jitter buffer: see docs/decisions.md D16
+OVERRUN_EVENT_INTERVAL_S = 1.0  # at most one "Task Period Exceeded" event per this much wall time (D123)
+TASK_PERIOD_EXCEEDED = "60010000"  # the manual's controller event 6001 (seed 000 line 17849)
 
 
 @dataclass(frozen=True)
@@ -77,6 +79,8 @@ class Runner:
         self.timing_log: np.ndarray | None = None
         self.timing_rows = 0
         self.clock: Callable[[], float] = time.perf_counter  # the wall clock of realtime pacing (tests inject one)
+        self._overrun_logged_at: float | None = None  # wall time of the last 6001 event
+        self._overruns_logged = 0  # overruns already reported by an event
 
     # ------------------------------------------------------------------ public (any thread)
     @property
@@ -142,6 +146,8 @@ class Runner:
             self.epoch += 1
             self._rt_anchor = None
             self.overruns = 0
+            self._overruns_logged = 0
+            self._overrun_logged_at = None
             self._rtf_mark = (time.perf_counter(), controller.time_s)
             controller.publish()
 
@@ -285,6 +291,8 @@ class Runner:
         done = self.clock()
         if done > begin + period:
             self.overruns += 1
+        if self.overruns != self._overruns_logged:
+            self._log_overruns(ctrl, done)
         took = done - start
         self._load_sum += took
         self._load_n += 1
@@ -298,3 +306,20 @@ class Runner:
         self._release_after_cycle()
         self._publish()
         self._update_rtf()
+
+    def _log_overruns(self, ctrl: Controller, now: float) -> None:
+        """Task Period Exceeded (6001) as an observation, at most once per OVERRUN_EVENT_INTERVAL_S of wall time
+        with the count since the last event; the control carries on (decision D123)."""
+        last = self._overrun_logged_at
+        if last is not None and now - last < OVERRUN_EVENT_INTERVAL_S:
+            return
+        new = self.overruns - self._overruns_logged
+        self._overruns_logged = self.overruns
+        self._overrun_logged_at = now
+        ctrl.events.add(cycle=ctrl.cycle - 1, time_s=(ctrl.cycle - 1) * ctrl.period_s, source="controller",
+                        code=TASK_PERIOD_EXCEEDED, level="observation", message="Task Period Exceeded",
+                        detail=f"{new} period(s) computed after their deadline in realtime mode ({self.overruns} in "
+                        "all); the control continued with every period computed (D16, D123)",
+                        cause="the period's computation (or the host) was slower than the primary period",
+                        correction="lengthen the primary period, lighten the program or the machine's load",
+                        source_kind="controller", source_name="controller")
