@@ -4,6 +4,7 @@ import type { RobotOut } from "../../api/types";
 import { useGroup } from "../../store/groupCommands";
 import { GroupControls, LastGroupInstruction } from "../group/GroupControls";
 import { RobotJogPanel } from "../group/RobotJogPanel";
+import { ControlGuard } from "../control/ControlGuard";
 import { useRobots } from "./useRobots";
 
 function fmt(v: number | null | undefined, digits = 3): string {
@@ -107,8 +108,10 @@ function RobotTestRun({ name, coordSystems }: { name: string; coordSystems: Robo
   return (
     <Stack gap={8} pt={6} style={{ borderTop: "1px solid var(--mantine-color-gray-3)" }} data-testid="robot-testrun">
       <Title order={6}>Test run</Title>
-      <GroupControls group={group} compact />
-      <RobotJogPanel group={group} coordSystems={coordSystems} />
+      <ControlGuard>
+        <GroupControls group={group} compact />
+        <RobotJogPanel group={group} coordSystems={coordSystems} />
+      </ControlGuard>
       <LastGroupInstruction group={name} />
     </Stack>
   );
