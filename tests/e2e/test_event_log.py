@@ -108,7 +108,7 @@ def test_esc_and_arrow_keys(page, server: Server) -> None:
     page.get_by_test_id("nav-axis-MC_Axis000").click()
     page.get_by_test_id("testrun-MC_Axis000").wait_for()
     page.get_by_test_id("servo-toggle").click()
-    page.get_by_test_id("servo-status").filter(has_text="ON").wait_for(timeout=10000)
+    page.get_by_test_id("servo-status").filter(has_text=re.compile("^ON$")).wait_for(timeout=10000)
 
     # Esc: MC_Stop on the test-run axis (MC_MoveVelocity 20 mm/s first)
     page.get_by_test_id("vel-execute").click()

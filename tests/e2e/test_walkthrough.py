@@ -108,13 +108,13 @@ def test_first_ten_minutes(page, server: Server) -> None:
     page.get_by_test_id(f"nav-axis-{AXIS}").click()
     page.get_by_test_id(f"testrun-{AXIS}").wait_for()
     page.get_by_test_id("servo-toggle").click()
-    page.get_by_test_id("servo-status").filter(has_text="ON").wait_for(timeout=10000)
+    page.get_by_test_id("servo-status").filter(has_text=re.compile("^ON$")).wait_for(timeout=10000)
     _state(page, "Standstill")
     assert page.evaluate("document.documentElement.scrollWidth <= window.innerWidth"), "horizontal page scroll"
 
     # 3. home: MC_Home with the axis's homing settings (proximity dog, Z phase) → home defined at 0
     page.get_by_test_id("home-button").click()
-    page.get_by_test_id("homed").filter(has_text="Homed").wait_for(timeout=30000)
+    page.get_by_test_id("homed").filter(has_text=re.compile("^Homed$")).wait_for(timeout=30000)  # not "Not homed"
     _state(page, "Standstill")
     v = _axis(server)
     assert v["Details"]["Homed"] is True and v["Cmd"]["Pos"] == pytest.approx(0.0, abs=1e-9), v
