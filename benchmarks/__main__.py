@@ -51,6 +51,9 @@ def main(argv: list[str] | None = None) -> int:
     sbs = sub.add_parser("side-by-side", help="the same scenario on MC Studio and on pyplcopen")
     sbs.add_argument("--axes", type=int, default=64)
     sbs.add_argument("--sim-seconds", type=float, default=5.0)
+    soak = sub.add_parser("soak", help="the demo in fast mode under random valid commands for a long time (not in all)")
+    soak.add_argument("--minutes", type=float, default=60.0)
+    soak.add_argument("--seed", type=int, default=1)
     a = sub.add_parser("all", help="every scenario, each in its own process, with short durations")
     a.add_argument("--realtime-seconds", type=float, default=60.0)
     args = p.parse_args(argv)
@@ -88,6 +91,10 @@ def main(argv: list[str] | None = None) -> int:
         from . import api
 
         result = api.run_ws(clients=args.clients, rate_hz=args.rate_hz, seconds=args.seconds)
+    elif args.scenario == "soak":
+        from . import soak as soak_bench
+
+        result = soak_bench.run(minutes=args.minutes, seed=args.seed)
     elif args.scenario == "side-by-side":
         from . import sidebyside
 
