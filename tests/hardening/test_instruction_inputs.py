@@ -270,3 +270,13 @@ def test_non_integral_number_for_an_integer_input_is_422(value: str, rest: TestC
     r = rest.post("/api/v1/fb", content=body, headers={"Content-Type": "application/json"})
     assert r.status_code == 422, r.text
     assert r.json()["detail"][0]["loc"] == ["body", "inputs", "RatioNumerator"]
+
+
+@pytest.mark.parametrize("value", ["²", "-³", "٣", "１"])
+def test_non_ascii_digits_for_an_enumeration_are_422(value: str, rest: TestClient) -> None:
+    """Finding: an enumerator given as a string of non-ASCII digits ('²'.isdigit() is True) made int() raise
+    ValueError in the input coercion (a 500); now a 422 naming the input."""
+    r = rest.post("/api/v1/fb", json={"type": "MC_MoveAbsolute", "inputs": {"Axis": "MC_Axis000",
+                                                                          "BufferMode": value}})
+    assert r.status_code == 422, r.text
+    assert r.json()["detail"][0]["loc"] == ["body", "inputs", "BufferMode"]

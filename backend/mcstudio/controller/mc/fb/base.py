@@ -137,7 +137,7 @@ class Var:
             if isinstance(value, str):
                 if value in en.__members__:
                     return int(en[value])
-                if value.lstrip("-").isdigit():
+                if value.lstrip("-").isascii() and value.lstrip("-").isdigit():  # ('²'.isdigit() is True)
                     value = int(value)
                 else:
                     raise FBInputError(self.name, f"{value!r} is not an enumerator of {t}; use one of "
