@@ -757,7 +757,12 @@ class MotionModule:
         try:
             seg = axis.plan_job(job, p0, v0, a0)
         except PlanningError as err:
-            axis.raise_error(E_INTERNAL, source="profile planner", detail=str(err))
+            owner = job.owner
+            axis.raise_error(E_INTERNAL, source="profile planner" + (f" / {owner.label}" if owner else ""),
+                             detail=str(err))
+            if owner is not None and job.status == JobStatus.ABORTED:
+                job.status = JobStatus.ERROR  # the instruction that asked for the profile shows FFFF (D124)
+                job.error_id = E_INTERNAL
             return
         if isinstance(seg, int):
             owner = job.owner

@@ -17,7 +17,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from ruckig import ControlInterface, InputParameter, Result, Ruckig, Trajectory
+from ruckig import ControlInterface, InputParameter, Result, Ruckig, RuckigError, Trajectory
 
 from ...fastnp import count_nonzero
 
@@ -100,7 +100,12 @@ class Planner:
             inp.target_velocity = [v_end]
             inp.target_acceleration = [0.0]
             inp.max_velocity = [max(vmax, abs(v_end), abs(v0) if abs(v0) > vmax else 0.0, 1e-9)]
-        result = self._otg.calculate(inp, self._traj)
+        try:
+            result = self._otg.calculate(inp, self._traj)
+        except RuckigError as err:  # ruckig raises (instead of returning an error) for some inputs it cannot plan,
+            # e.g. Acceleration 1e-12 to 100 units/s (a 10^14 s ramp): a PlanningError like the others (D15, D124)
+            raise PlanningError(Result.Error, f"p0={p0} v0={v0} a0={a0} target={target_p} v={target_v} vmax={vmax} "
+                                f"acc={acc} dec={dec}: {str(err).splitlines()[0]}") from None
         if result not in (Result.Working, Result.Finished):
             raise PlanningError(result, f"p0={p0} v0={v0} a0={a0} target={target_p} v={target_v} vmax={vmax}")
         seg = _segments_from_trajectory(self._traj, target_p=target_p)
