@@ -118,3 +118,13 @@ def test_not_found_is_documented(tmp_path: Path, method: str, path: str, body: A
         doc = c.get("/api/v1/openapi.json").json()
     template = path.replace("/120/", "/{address}/").replace("/no-such-device", "/{device_id}")
     assert "404" in doc["paths"][template][method.lower()]["responses"]
+
+
+@pytest.mark.parametrize("key", ["[", "]", "a[", "[²]", "x[1", "[]", "a.b[c]d["])
+def test_project_error_paths_with_brackets_in_keys(tmp_path: Path, key: str) -> None:
+    """Finding: PUT /project with an unknown key "[" made the 422's path splitting raise ValueError (a 500); keys
+    with brackets are now kept as text in `loc`."""
+    with TestClient(demo_app(tmp_path)) as c:
+        r = c.put("/api/v1/project", json={key: None})
+    assert r.status_code == 422, r.text
+    assert all(isinstance(d["loc"], list) and d["loc"][0] == "body" for d in r.json()["detail"])

@@ -99,12 +99,13 @@ def _split_path(path: str) -> list[Any]:
     """'axes[1].parameters.Operation.MaxVel' → ['axes', 1, 'parameters', 'Operation', 'MaxVel']."""
     out: list[Any] = []
     for part in path.split("."):
-        while "[" in part:
+        # (a key of the document may itself contain '[' or ']', e.g. an unknown key "[": kept as text)
+        while "[" in part and "]" in part.split("[", 1)[1]:
             head, rest = part.split("[", 1)
             if head:
                 out.append(head)
             idx, part = rest.split("]", 1)
-            out.append(int(idx) if idx.isdigit() else idx)
+            out.append(int(idx) if idx.isascii() and idx.isdigit() else idx)
         if part:
             out.append(part)
     return out
