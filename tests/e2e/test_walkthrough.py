@@ -91,6 +91,15 @@ def _studio_console(page: object, server: Server) -> list[str]:
 
 
 def test_first_ten_minutes(page, server: Server) -> None:
+    try:
+        _walkthrough(page, server)
+    except Exception:
+        with contextlib.suppress(Exception):
+            page.screenshot(path=str(SHOTS / "failure.png"), timeout=30000)  # what the page showed
+        raise
+
+
+def _walkthrough(page, server: Server) -> None:
     SHOTS.mkdir(parents=True, exist_ok=True)
     T0[0] = time.monotonic()
     console = _studio_console(page, server)
