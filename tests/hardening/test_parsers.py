@@ -197,11 +197,6 @@ def test_project_json_mutations(tmp_path_factory: pytest.TempPathFactory, data: 
     _project_ok(data, tmp_path_factory.mktemp("pj"))
 
 
-_PROJECT_LOADER_FINDING = pytest.mark.xfail(
-    strict=True, reason="project/io.py load_project lets RecursionError/ValueError of json.loads escape; reported "
-    "to the projects helper (docs/hardening.md)")
-
-
 @pytest.mark.parametrize(("name", "data"), [
     ("truncated", DEMO_JSON[: len(DEMO_JSON) // 2]),
     ("UTF-16", DEMO_JSON.decode().encode("utf-16")),
@@ -211,17 +206,14 @@ _PROJECT_LOADER_FINDING = pytest.mark.xfail(
     ("NaN literal", DEMO_JSON.replace(b'"MaxVel": ', b'"MaxVel": NaN, "x": ', 1)),
     ("1e999", DEMO_JSON.replace(b'"MaxVel": ', b'"MaxVel": 1e999, "x": ', 1)),
     ("a 1 MB name", json.dumps({**json.loads(DEMO_JSON), "name": "n" * MB}).encode()),
-    pytest.param("deep nesting 10^5", b"[" * 100_000 + b"]" * 100_000, marks=_PROJECT_LOADER_FINDING),
-    pytest.param("deep object nesting", b'{"a":' * 100_000 + b"1" + b"}" * 100_000, marks=_PROJECT_LOADER_FINDING),
-    pytest.param("a 10^5-digit integer", b'{"name": "x", "n": 1' + b"0" * 100_000 + b"}",
-                 marks=_PROJECT_LOADER_FINDING),
+    ("deep nesting 10^5", b"[" * 100_000 + b"]" * 100_000),
+    ("deep object nesting", b'{"a":' * 100_000 + b"1" + b"}" * 100_000),
+    ("a 10^5-digit integer", b'{"name": "x", "n": 1' + b"0" * 100_000 + b"}"),
 ])
 def test_project_json_hostile_files(name: str, data: bytes, tmp_path: Path) -> None:
     _project_ok(data, tmp_path)
 
 
-@pytest.mark.xfail(strict=True, reason="project/io.py refuses a UTF-8 BOM ('Unexpected UTF-8 BOM'); reported to the "
-                   "projects helper (the API's PUT /project reads one)")
 def test_project_json_bom_is_read(tmp_path: Path) -> None:
     """A project.json saved by a Windows editor starts with a UTF-8 BOM."""
     (tmp_path / "project.json").write_bytes(b"\xef\xbb\xbf" + DEMO_JSON)

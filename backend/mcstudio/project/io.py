@@ -93,11 +93,17 @@ def load_project(folder: str | os.PathLike[str], library: DeviceLibrary | None =
     except OSError as err:
         raise ProjectError(f"{path} cannot be read ({err.strerror or err})") from None
     try:
-        data = json.loads(raw.decode("utf-8"))
+        text = raw.decode("utf-8-sig")  # a byte-order mark (Windows editors write one) is skipped; saves write none
     except UnicodeDecodeError as err:
         raise ProjectError(f"{path} is not UTF-8 text ({err.reason} at byte {err.start})") from None
+    try:
+        data = json.loads(text)
     except json.JSONDecodeError as err:
         raise ProjectError(f"{path} is not valid JSON: {err.msg} at line {err.lineno}, column {err.colno}") from None
+    except RecursionError:
+        raise ProjectError(f"{path} nests arrays or objects too deeply to be a project document") from None
+    except ValueError as err:  # e.g. an integer of more than 4300 digits
+        raise ProjectError(f"{path} is not a valid project document: {err}") from None
     try:
         return parse_project(data, library if library is not None else DeviceLibrary(folder))
     except ProjectError as err:
