@@ -100,6 +100,7 @@ def test_others_may_only_watch_while_a_client_holds_control(cc: TestClient) -> N
         ("POST", "/controller/reset-errors", {}),
         ("POST", "/faults", {"kind": "slave_disconnect", "node_address": 1}),
         ("PUT", "/axes/MC_Axis001/config", cc.get(f"{API}/axes/MC_Axis001").json()["config"]),
+        ("POST", "/project/revert", {}),
     ]
     for method, path, body in refused:
         r = cc.request(method, API + path, json=body, headers=B)

@@ -52,7 +52,7 @@ TEST_RUN: frozenset[tuple[str, str]] = frozenset({
 CONFIGURATION: frozenset[tuple[str, str]] = frozenset({
     ("PUT", "/axes/{name}/config"), ("PUT", "/groups/{name}/config"),
     ("PUT", "/ethercat"), ("PUT", "/ethercat/slaves/{address}/pdo"),
-    ("PUT", "/project"), ("POST", "/projects/open"), ("POST", "/projects/new"),
+    ("PUT", "/project"), ("POST", "/project/revert"), ("POST", "/projects/open"), ("POST", "/projects/new"),
 })
 
 
