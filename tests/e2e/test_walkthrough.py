@@ -127,6 +127,8 @@ def _walkthrough(page, server: Server) -> None:
     _state(page, "Standstill")
     v = _axis(server)
     assert v["Details"]["Homed"] is True and v["Cmd"]["Pos"] == pytest.approx(0.0, abs=1e-9), v
+    page.get_by_test_id("jog-panel").scroll_into_view_if_needed()  # the top of the test run, for the picture
+    page.mouse.move(700, 700)  # no tooltip in the picture
     _shot(page, "02-servo-on-homed")
 
     # 4. jog: hold Jog + (dead-man MC_MoveJog at the jog velocity), release → stops
