@@ -205,3 +205,29 @@ def test_lease_expires_when_the_renewing_client_vanishes(running: tuple[TestClie
     assert _wait(studio, lambda: client.get(f"{API}/axes/MC_Axis003").json()["variables"]["Cmd"]["Vel"] == 0.0,
                  cycles=5000)
     assert any("lease" in e.message for e in studio.controller.events.list())
+
+
+def test_a_request_is_answered_after_its_effect_is_published() -> None:
+    """Finding of the soak: with the kernel thread running and paused, Runner.call answered a request before it
+    published the snapshot; POST /fb reads its new instance from the snapshot next and found none (an AssertionError,
+    a 500). The publication is held up here (bounded) to make the race certain: the answer must wait for it."""
+    from mcstudio.controller.runner import Runner
+    from tests.conftest import small_project
+
+    r = Runner(Controller(small_project()), mode="paused")
+    publish = r._publish
+    release = threading.Event()
+
+    def slow_publish(*, force: bool = False) -> None:
+        release.wait(0.5)  # a late publication (bounded); the answer may not overtake it
+        publish(force=force)
+
+    r._publish = slow_publish  # type: ignore[method-assign]
+    r.start()
+    try:
+        for _ in range(3):
+            fid = r.call(lambda c: c.fb("MC_Power", Axis="MC_Axis000").id)
+            assert fid in r.snapshot.fbs
+    finally:
+        release.set()
+        r.stop()

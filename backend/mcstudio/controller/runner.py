@@ -166,6 +166,7 @@ class Runner:
     # ------------------------------------------------------------------ kernel thread
     def _serve_requests(self) -> bool:
         served = False
+        answered: list[tuple[Future[object], object]] = []
         while True:
             with self._wake:
                 if not self._queue:
@@ -181,9 +182,13 @@ class Runner:
                 if see_cycle and self._mode != "paused":
                     self._after_cycle.append((fut, result))
                 else:
-                    fut.set_result(result)
+                    answered.append((fut, result))
         if served:
+            # published before the answers: a caller reads the snapshot next (POST /fb while paused found its new
+            # instance missing from it — an AssertionError, a 500 — when answered first; found by the soak)
             self._publish(force=True)
+            for fut, result in answered:
+                fut.set_result(result)
             time.sleep(0)  # hand the GIL to the threads whose requests were just answered
         return served
 
