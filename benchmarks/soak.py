@@ -159,7 +159,7 @@ class _Soak:
 
     def trace(self) -> None:
         rng = self.rng
-        if self.traces and rng.random() < 0.5:
+        if self.traces and (len(self.traces) >= 6 or rng.random() < 0.5):  # (8 traces at most per controller)
             tid = self.traces.pop(0)
             self.req("GET", f"/traces/{tid}")
             self.req("DELETE", f"/traces/{tid}")
