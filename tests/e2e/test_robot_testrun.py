@@ -1,9 +1,12 @@
 """The group test run in a real headless Chromium at 1366×768: the 3D tab's robot panel (servo ON, MC_GroupEnable,
-ready pose, hold +X on the Cartesian jog MC_RobotJog — the TCP moves along X only and the picture changes — and the
-pick-and-place demo), and the XY group MC_Group001's tab from the project tree (MC_MoveLinear to (120, 60) mm).
+ready pose, hold +X on the Cartesian jog MC_RobotJog — the TCP moves along X only and the picture changes; a UCS
+defined by MC_DefineCoordSystem chosen as the jog frame and one 10 mm step along its X axis; the settings still there
+after a reload (localStorage, D93); the pick-and-place demo with its settings), and the XY group MC_Group001's tab
+from the project tree (MC_MoveLinear to (120, 60) mm).
 
 Screenshots (test-artifacts/e2e/): robot-jog-before.png, robot-jog-after.png (the viser frame), robot-testrun.png
-(the 3D tab with the panel), robot-demo.png, group-xy-testrun.png. Waits are on what the page or the API shows.
+(the 3D tab with the panel), robot-jog-ucs-step.png, robot-demo.png, group-xy-testrun.png. Waits are on what the page
+or the API shows.
 """
 
 from __future__ import annotations
@@ -40,6 +43,65 @@ def _until(page: object, pred: Callable[[], bool], what: str, *, timeout_s: floa
 def _group_state(page: object, name: str, state: str) -> None:
     page.get_by_test_id(f"group-state-{name}").filter(has_text=re.compile(f"^{state}$")).first.wait_for(  # type: ignore[attr-defined]
         timeout=15000)
+
+
+def _api_group(server: Server, name: str) -> dict:
+    return next(g for g in httpx.get(server.api("/groups")).json() if g["name"] == name)
+
+
+def _fb_done(server: Server, fb_type: str, inputs: dict) -> None:
+    """Run a one-shot instruction through /fb and wait (on the API) until it is Done."""
+    fb = httpx.post(server.api("/fb"), json={"type": fb_type, "inputs": inputs}).json()
+    end = time.monotonic() + 30.0
+    while not httpx.get(server.api(f"/fb/{fb['id']}")).json()["outputs"].get("Done"):
+        assert time.monotonic() < end, f"{fb_type} not Done"
+        time.sleep(0.02)
+    httpx.delete(server.api(f"/fb/{fb['id']}"))
+
+
+def _jog_in_a_ucs_by_steps(page: object, server: Server) -> None:
+    """D93: UCS 2 (MC_DefineCoordSystem, Rz 90°: its +X is the MCS's +Y) is offered as the jog frame; in Step mode
+    one click on +X moves the TCP 10 mm along MCS +Y, X and Z unchanged; the settings survive a reload."""
+    _fb_done(server, "MC_DefineCoordSystem", {"AxesGroup": ROBOT, "Execute": True,
+                                              "CoordTransform": {"CSID": 2, "Pose": [0, 0, -300, 0, 0, 90]}})
+    page.get_by_test_id("robot-jog-frame").click()  # type: ignore[attr-defined]
+    page.get_by_role("option", name="UCS 2").click()  # type: ignore[attr-defined]
+    page.get_by_test_id("robot-jog-frame-note").filter(has_text="UCS 2").wait_for(timeout=30000)  # type: ignore[attr-defined]
+    page.get_by_test_id("robot-jog-mode").get_by_text("Step").click()  # type: ignore[attr-defined]
+    page.get_by_test_id("robot-jog-step").fill("10")  # type: ignore[attr-defined]
+    p0 = _robot(server)["tcp"]
+    page.get_by_test_id("robot-jog-plus-x").filter(has_text="10 mm").click()  # type: ignore[attr-defined]
+    _until(page, lambda: _robot(server)["tcp"][1] > p0[1] + 9.9, "one 10 mm step along +X of UCS 2 (= MCS +Y)",
+           timeout_s=60.0)
+    # the step ended (InPosition), the page dropped Enable: the group is Standby again (on the API: the page's
+    # read-out can lag behind while software WebGL holds its main thread)
+    _until(page, lambda: _api_group(server, ROBOT)["state"] == "Standby", "the group Standby after the step",
+           timeout_s=60.0)
+    page.wait_for_timeout(300)  # type: ignore[attr-defined]  # the drives settle on the command
+    p1 = _robot(server)["tcp"]
+    assert p1[1] == pytest.approx(p0[1] + 10.0, abs=0.05)
+    assert p1[0] == pytest.approx(p0[0], abs=0.05) and p1[2] == pytest.approx(p0[2], abs=0.05)
+    page.screenshot(path=str(ARTIFACTS / "robot-jog-ucs-step.png"), timeout=90000)  # type: ignore[attr-defined]
+    # a demo setting, then reload: everything is read back from localStorage (per project and group)
+    page.get_by_test_id("robot-demo-settings-toggle").click()  # type: ignore[attr-defined]
+    page.get_by_test_id("robot-demo-speed").fill("450")  # type: ignore[attr-defined]
+    stored = page.evaluate(  # type: ignore[attr-defined]
+        "() => Object.keys(localStorage).filter((k) => k.startsWith('mcstudio.robotTestRun.v1:') "
+        "&& k.endsWith(':MC_Group000')).map((k) => JSON.parse(localStorage.getItem(k)))")
+    assert len(stored) == 1
+    assert stored[0]["velocity"] == 100 and stored[0]["mode"] == "step" and stored[0]["step"] == 10
+    assert stored[0]["frame"] == "ucs:2" and stored[0]["demo"]["velocity"] == 450
+    page.reload()  # type: ignore[attr-defined]
+    page.get_by_test_id("ws-status").filter(has_text="live").wait_for(timeout=60000)  # type: ignore[attr-defined]
+    page.get_by_test_id("nav-3d").click()  # type: ignore[attr-defined]
+    page.get_by_test_id("robot-testrun").wait_for(timeout=60000)  # type: ignore[attr-defined]
+    assert page.get_by_test_id("robot-jog-speed").input_value() == "100"  # type: ignore[attr-defined]
+    assert page.get_by_test_id("robot-jog-step").input_value() == "10"  # type: ignore[attr-defined]
+    page.get_by_test_id("robot-jog-frame-note").filter(has_text="UCS 2").wait_for(timeout=30000)  # type: ignore[attr-defined]
+    assert page.get_by_test_id("robot-jog-frame").input_value() == "UCS 2"  # type: ignore[attr-defined]
+    page.get_by_test_id("robot-demo-settings-toggle").click()  # type: ignore[attr-defined]
+    assert page.get_by_test_id("robot-demo-speed").input_value() == "450"  # type: ignore[attr-defined]
+    page.get_by_test_id("robot-demo-settings-toggle").click()  # type: ignore[attr-defined]
 
 
 def test_robot_jog_demo_and_xy_move(page, server: Server) -> None:
@@ -82,6 +144,8 @@ def test_robot_jog_demo_and_xy_move(page, server: Server) -> None:
     page.screenshot(path=str(ARTIFACTS / "robot-testrun.png"), timeout=90000)  # the 3D frame renders in software
     changed = _changed_fraction(page, before, after)
     assert changed > 0.003, f"the picture hardly changed ({changed:.4f} of the pixels)"
+
+    _jog_in_a_ucs_by_steps(page, server)
 
     # the pick-and-place demo: one full cycle, then stop (the conveyor stops too)
     page.get_by_test_id(f"robot-demo-run-{ROBOT}").click()
