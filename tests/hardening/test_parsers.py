@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import os
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -287,11 +288,36 @@ def test_cam_csv_upload_hostile_is_422(api: TestClient) -> None:
     assert r.status_code == 422, r.text[:300]
 
 
-@pytest.mark.xfail(strict=True, reason="PUT /api/v1/project reads a JSON body of any size into memory; reported to the "
-                   "projects helper (an app-wide FastAPI max_body_size would bound every body while it streams)")
 def test_project_put_size_limit(api: TestClient) -> None:
+    """Every JSON body is bounded (api/limits.py, D57): 413 naming the body, the open project unchanged."""
+    before = api.get("/api/v1/project").json()
     body = b'{"name": "x", "description": "' + b"d" * (32 * MB) + b'"}'
-    assert api.put("/api/v1/project", content=body, headers={"Content-Type": "application/json"}).status_code == 413
+    r = api.put("/api/v1/project", content=body, headers={"Content-Type": "application/json"})
+    assert r.status_code == 413 and r.json()["detail"][0]["loc"] == ["body"], r.text[:300]
+    assert api.get("/api/v1/project").json() == before
+
+
+def test_a_chunked_body_is_cut_off_at_the_limit(api: TestClient) -> None:
+    """Without Content-Length the body is read only up to the limit, then refused (it is never held whole)."""
+    from mcstudio.api.limits import DEFAULT_BODY_LIMIT
+
+    sent = 0
+
+    def chunks() -> Iterator[bytes]:
+        nonlocal sent
+        yield b'{"name": "x", "description": "'
+        while sent < 4 * DEFAULT_BODY_LIMIT:
+            sent += MB
+            yield b"d" * MB
+
+    r = api.put("/api/v1/project", content=chunks(), headers={"Content-Type": "application/json"})
+    assert r.status_code == 413, r.text[:300]
+
+
+def test_a_chunked_body_within_the_limit_is_read(api: TestClient) -> None:
+    r = api.put("/api/v1/project", content=iter([DEMO_JSON[:100], DEMO_JSON[100:]]),
+                headers={"Content-Type": "application/json"})
+    assert r.status_code == 200, r.text[:300]
 
 
 @pytest.mark.parametrize(("method", "path", "ctype"), [

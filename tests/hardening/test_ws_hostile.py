@@ -55,10 +55,6 @@ def test_hostile_messages_get_errors_and_the_socket_goes_on(client: TestClient) 
     assert client.get("/api/v1/health").status_code == 200
 
 
-@pytest.mark.xfail(strict=True, reason="api/routers/live.py: json.loads of a message nested deeper than Python's "
-                   "recursion limit raises RecursionError, which the reader does not catch: that client's socket stops "
-                   "answering. Reported to the shared-control helper (live.py); the fix is RecursionError in the "
-                   "reader's except clause")
 def test_deeply_nested_message_is_an_error_not_a_dead_socket(tmp_path: Path) -> None:
     """Run in a daemon thread with its own client: if the socket hangs, the thread is abandoned (no CI hang)."""
     result: dict[str, Any] = {}

@@ -17,6 +17,7 @@ from .. import __version__
 from . import errors
 from .auth import AccessMiddleware, AccessPolicy
 from .control import ControlRegistry, control_guard
+from .limits import BodyLimitMiddleware
 from .models import WsHeartbeat, WsPing, WsSubscribe
 from .routers import (
     axes,
@@ -83,6 +84,7 @@ def create_app(studio: Studio, *, static_dir: Path | None = None, cors_origins: 
     if cors_origins:
         app.add_middleware(CORSMiddleware, allow_origins=cors_origins, allow_methods=["*"], allow_headers=["*"],
                            allow_credentials=True)
+    app.add_middleware(BodyLimitMiddleware)  # 413 while the body streams (limits.py, D57)
     app.add_middleware(AccessMiddleware, policy=policy)
 
     api = APIRouter(prefix=API_PREFIX)

@@ -106,7 +106,7 @@ async def websocket(ws: WebSocket) -> None:
         while True:
             try:
                 msg = await ws.receive_json()
-            except (json.JSONDecodeError, ValueError):
+            except (json.JSONDecodeError, ValueError, RecursionError):  # RecursionError: nested beyond the limit
                 await ws.send_json({"type": "error", "detail": "messages must be JSON objects"})
                 continue
             state["heard"] = control.clock()
