@@ -103,6 +103,22 @@ def test_jog_timing_and_release(ctrl: Controller) -> None:
     assert ctrl.mc.axes[0].state == AxisState.Standstill
 
 
+def test_deleting_a_jogging_instance_stops_the_jog(ctrl: Controller) -> None:
+    """D58: DELETE of a jogging MC_MoveJog acts like its enable falling — the axis decelerates at the instance's
+    Deceleration to Standstill instead of jogging on with nothing left to stop it."""
+    power_on(ctrl)
+    jog = ctrl.fb("MC_MoveJog", Axis="MC_Axis000", PositiveEnable=True, Velocity=50.0, Acceleration=1000.0,
+                  Deceleration=1000.0)
+    ctrl.step(200)
+    assert ctrl.mc.cmd_vel[0] == pytest.approx(50.0)
+    ctrl.delete_fb(jog.id)
+    ctrl.step(10)
+    assert 0.0 < ctrl.mc.cmd_vel[0] < 50.0, "decelerating"
+    ctrl.step(100)  # 50 / 1000 = 0.05 s = 50 periods of 1 ms
+    assert ctrl.mc.cmd_vel[0] == 0.0
+    assert ctrl.mc.axes[0].state == AxisState.Standstill
+
+
 def test_jog_reverse_with_other_enable(ctrl: Controller) -> None:
     """Jogging + and NegativeEnable↑: the axis reverses; dropping NegativeEnable while PositiveEnable is still TRUE
     does not resume + (the axis stops)."""

@@ -686,6 +686,12 @@ class MC_MoveJog(FunctionBlock):
         elif job.status == JobStatus.ERROR:
             self._set_error(job.error_id, self.axis)
 
+    def on_delete(self) -> None:
+        """Deleting a jogging instance releases the jog like its enable falling: the axis decelerates with the
+        instance's Deceleration and stops (D58) — nothing would be left to stop it otherwise."""
+        if self.job is not None and self.job.running and self.axis is not None:
+            self.axis.release_jog(self.job)
+
     def _start(self, direction: int) -> None:
         o = self.out
         job = self.job
