@@ -45,7 +45,7 @@ def _state(page, node: int, state: str, timeout: float = 10000) -> None:
 
 def _open_studio(page, server: Server) -> None:
     page.goto(server.base + "/")
-    page.get_by_test_id("ws-status").filter(has_text="live").wait_for(timeout=15000)
+    page.get_by_test_id("ws-status").filter(has_text="live").wait_for(timeout=30000)
 
 
 def test_network_view_and_pdo_map_editor(page, server: Server) -> None:
