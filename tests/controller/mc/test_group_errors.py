@@ -112,3 +112,19 @@ def test_change_axes_in_group_549d(axes: list[int]) -> None:
         return
     assert ch.Error and ch.ErrorID == 0x549D
     assert [a.number for a in g.axes] == before
+
+
+@pytest.mark.parametrize(("inputs", "code"), [
+    pytest.param({"AccFactor": 500.1}, 0x5470, id="accfactor-5470"),
+    pytest.param({"AccFactor": -1.0}, 0x5470, id="accfactor-negative-5470"),
+    pytest.param({"JerkFactor": 600.0}, 0x546F, id="jerkfactor-546f"),
+])
+def test_group_set_override_reserved_factors_out_of_range(inputs: dict[str, Any], code: int) -> None:
+    """§4.9 MC_GroupSetOverride (seed 000 line 16694) and A-1 5470 / 546F: AccFactor / JerkFactor (reserved) outside
+    0–500 % is an error (Enabled stays FALSE)."""
+    c = Controller(group_project())
+    ready(c)
+    ov = c.fb("MC_GroupSetOverride", AxesGroup=G0, Enable=True, VelFactor=50.0, **inputs)
+    c.step(1)
+    assert ov.Error and ov.ErrorID == code and not ov.Enabled, f"{ov.ErrorID:04X}"
+
