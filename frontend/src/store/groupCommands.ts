@@ -393,11 +393,22 @@ function sleep(ms: number): Promise<void> {
 }
 
 /** Wait until `pred` holds for the latest snapshot/poll; false on timeout or when `alive()` turns false. */
+/**
+ * Wait until `pred` holds, at most `timeoutMs` of the controller's simulated time: a machine that runs slower than
+ * real time (a loaded PC, a large project) gets the same number of control periods as a fast one. A wall-clock cap of
+ * six times the timeout (at least 30 s) ends the wait when the controller does not run at all (paused, gone).
+ */
 async function waitFor(pred: () => boolean, timeoutMs: number, alive: () => boolean = () => true): Promise<boolean> {
-  const end = Date.now() + timeoutMs;
-  while (Date.now() < end) {
+  const simNow = () => liveStore.get().controller?.time_s ?? null;
+  const simStart = simNow();
+  const started = Date.now();
+  const wallEnd = started + Math.max(6 * timeoutMs, 30000);
+  while (Date.now() < wallEnd) {
     if (!alive()) return false;
     if (pred()) return true;
+    const t = simNow();
+    const elapsedMs = simStart !== null && t !== null ? (t - simStart) * 1000 : Date.now() - started; // no snapshot: wall
+    if (elapsedMs > timeoutMs) break;
     await sleep(50);
   }
   return pred();
