@@ -77,6 +77,8 @@ class AxesGroup(GroupMotion, GroupPlanning, GroupMonitor):
         self.number = config.number
         self.op = config.operation
         self.kinematics = config.kinematics
+        # robot.kinematics_of: (kinematics object, Delta3Params, Delta3Workspace) of the kinematics in force
+        self.robot_kin_cache: tuple[Any, Any, Any] | None = None
         # MC_SetKinTransform (fb/robot_fb.py): kinematics usable by the robot instructions from this cycle on (the
         # period after Done, §9.1), and EnableWorkspace; the project's kinematics apply from cycle 0
         self.kin_from_cycle = 0

@@ -227,6 +227,29 @@ class GroupMotion:
         self._set_state(self._rest_state())
         self.m.moving_groups.pop(self.number, None)
 
+    # --- jobs whose commands their instruction computes (the robot instructions, robot.py) -------------------
+    def begin_own_job(self, job: Job) -> None:
+        """Make `job` the running instruction of a group whose commands the instruction itself computes each period
+        (MC_MoveTimeAbsolute, MC_SyncLinearConveyor, MC_SyncOut): the group is Moving and in the module's moving set.
+        The caller has aborted / halted what ran before."""
+        self.current = job
+        self._set_state(G.Moving)
+        self.m.moving_groups[self.number] = self
+
+    def end_own_job(self, job: Job, *, error_id: int = 0) -> None:
+        """End such a job: Done (or Error with `error_id`, the caller raises the group error); when Done the profile
+        velocity and acceleration are zero, the group leaves the moving set and returns to its rest state."""
+        if error_id:
+            self._end_job(job, JobStatus.ERROR, error_id)
+            return
+        m = self.m
+        for i in self.idx:
+            m.prof_vel[i] = 0.0
+            m.prof_acc[i] = 0.0
+        self._end_job(job, JobStatus.DONE)
+        self._set_state(self._rest_state())
+        m.moving_groups.pop(self.number, None)
+
     def end_sync(self, job: Job, *, aborted: bool = False) -> None:
         """End a synchronous job (`JobKind.GROUP_SYNC`) on behalf of its owner — MC_RobotJog once it has stopped
         after Enable↓, or when its instance is deleted (decision D90): the job is Done (CommandAborted with

@@ -39,10 +39,10 @@ def kinematics_of(group: AxesGroup) -> tuple[Delta3Params, Delta3Workspace] | No
     kin = group.kinematics
     if kin is None:
         return None
-    cache: tuple[Any, Delta3Params, Delta3Workspace] | None = getattr(group, "_robot_kin", None)
+    cache: tuple[Any, Delta3Params, Delta3Workspace] | None = group.robot_kin_cache
     if cache is None or cache[0] is not kin:
         cache = (kin, kin.params(), kin.workspace_obj())
-        group._robot_kin = cache  # type: ignore[attr-defined]
+        group.robot_kin_cache = cache
     return cache[1], cache[2]
 
 
@@ -89,26 +89,18 @@ def start(group: AxesGroup, job: Job, motion: RobotMotion) -> None:
     group.halt()
     job.info["robot"] = motion
     job.status = JobStatus.STARTING
-    group.current = job
-    group._set_state(group.state.__class__.Moving)
-    group.m.moving_groups[group.number] = group
+    group.begin_own_job(job)
 
 
 def fail_running(group: AxesGroup, job: Job, code: int, detail: str = "") -> None:
     """An error during execution: the instance shows `code` and the robot stops immediately (group ErrorStop)."""
-    group._end_job(job, JobStatus.ERROR, code)
+    group.end_own_job(job, error_id=code)
     owner = job.owner
     group.raise_error(code, source=owner.label if owner is not None else None, detail=detail, immediate=True)
 
 
 def finish(group: AxesGroup, job: Job) -> None:
-    m = group.m
-    for i in group.idx:
-        m.prof_vel[i] = 0.0
-        m.prof_acc[i] = 0.0
-    group._end_job(job, JobStatus.DONE)
-    group._set_state(group._rest_state())
-    m.moving_groups.pop(group.number, None)
+    group.end_own_job(job)
 
 
 def drive(group: AxesGroup, job: Job, p: Vec3, params: Delta3Params, ws: Delta3Workspace | None) -> bool:
