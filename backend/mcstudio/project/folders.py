@@ -20,6 +20,7 @@ from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
+from .io import fsync_dir
 from .models import PROJECT_FILE
 
 MAX_NAME_CHARS = 64
@@ -149,22 +150,11 @@ def build_project_folder(root: Path, name: str, fill: Callable[[Path], None], *,
             shutil.rmtree(aside, ignore_errors=True)
         else:
             os.rename(staging, target)
-        _fsync_dir(root)
+        fsync_dir(root)
     except BaseException:
         shutil.rmtree(staging, ignore_errors=True)
         raise
     return target
-
-
-def _fsync_dir(folder: Path) -> None:
-    try:
-        fd = os.open(folder, os.O_RDONLY)
-    except OSError:
-        return
-    try:
-        os.fsync(fd)
-    finally:
-        os.close(fd)
 
 
 def copy_template(template: Template, staging: Path) -> None:

@@ -117,7 +117,8 @@ def dump_project(project: Project) -> str:
     return json.dumps(data, indent=2, ensure_ascii=False) + "\n"
 
 
-def _fsync_dir(folder: Path) -> None:
+def fsync_dir(folder: Path) -> None:
+    """Make a rename or new entry in `folder` durable (best effort where directories cannot be opened)."""
     try:
         fd = os.open(folder, os.O_RDONLY)
     except OSError:
@@ -193,7 +194,7 @@ def atomic_write(path: Path, text: str | bytes, *, keep_backup: bool = True) -> 
             # backup linked to the current document): then the temporary name is still there
             bak_tmp.unlink(missing_ok=True)
         os.replace(tmp, path)
-        _fsync_dir(folder)
+        fsync_dir(folder)
     except BaseException:
         tmp.unlink(missing_ok=True)
         raise

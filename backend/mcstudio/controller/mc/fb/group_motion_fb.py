@@ -75,22 +75,26 @@ class _GroupMotionFB(_GroupRef, ExecuteFB):
     def builder(self, group: AxesGroup) -> Callable[[tuple[float, ...]], Path | int]:
         raise NotImplementedError
 
-    def execute(self, axis: Any) -> None:
-        group: AxesGroup = axis
-        code = self.common_error() or (0 if group.kinematics is None else 0x5705)
-        if code:
-            self.fail(code, group)
-            return
+    def may_start(self, group: AxesGroup, input_error: int, *, motion: bool = True) -> bool:
+        """The start checks in the manual's order: input errors, the group's state (CommandAborted or an error), the
+        composition axes (`motion`: their limit inputs too), the instruction's own checks. False: the instance
+        already shows why it did not start."""
+        if input_error:
+            self.fail(input_error, group)
+            return False
         verdict, code = group.check_start("move")
         if verdict == "abort":
             self._finish("CommandAborted")
-            return
-        if verdict == "error":
-            self.fail(code, group)
-            return
-        code = group.member_error() or self.specific_error(group)
+            return False
+        code = code if verdict == "error" else group.member_error(motion=motion) or self.specific_error(group)
         if code:
             self.fail(code, group)
+            return False
+        return True
+
+    def execute(self, axis: Any) -> None:
+        group: AxesGroup = axis
+        if not self.may_start(group, self.common_error() or (0 if group.kinematics is None else 0x5705)):
             return
         i = self.inp
         job = Job(JobKind.GROUP_MOVE, self, velocity=i["Velocity"], acceleration=i["Acceleration"],
@@ -300,20 +304,7 @@ class MC_GroupSyncMoveAbsolute(_GroupMotionFB):
 
     def execute(self, axis: Any) -> None:
         group: AxesGroup = axis
-        code = self.common_error()
-        if code:
-            self.fail(code, group)
-            return
-        verdict, code = group.check_start("move")
-        if verdict == "abort":
-            self._finish("CommandAborted")
-            return
-        if verdict == "error":
-            self.fail(code, group)
-            return
-        code = group.member_error(motion=False) or self.specific_error(group)
-        if code:
-            self.fail(code, group)
+        if not self.may_start(group, self.common_error(), motion=False):
             return
         job = Job(JobKind.GROUP_SYNC, self)
         code = group.submit(job)
