@@ -132,8 +132,9 @@ class AxesGroup(GroupMotion, GroupPlanning, GroupMonitor):
             return "error", v
         return v, 0
 
-    def member_error(self, *, motion: bool = True) -> int:
-        """Start conditions of a group motion on the composition axes (A-1: 5441, 5466, 5442, 6443/6444)."""
+    def member_error(self) -> int:
+        """Start conditions of a group motion instruction on the composition axes (A-1: 5441, 5466, 5442,
+        6443/6444 — the limit inputs whatever the direction, "any axes group motion instruction", D130)."""
         m = self.m
         for a in self.axes:
             if not m.servo_on[a.i]:
@@ -144,13 +145,12 @@ class AxesGroup(GroupMotion, GroupPlanning, GroupMonitor):
         for a in self.axes:
             if a.stop_holders:
                 return E_MEMBER_STOPPING
-        if motion:
-            for a in self.axes:
-                din = int(m.din[a.i])
-                if din & DI_POSITIVE_LIMIT:
-                    return E.E_POSI_LIMIT_INPUT
-                if din & DI_NEGATIVE_LIMIT:
-                    return E.E_NEGA_LIMIT_INPUT
+        for a in self.axes:
+            din = int(m.din[a.i])
+            if din & DI_POSITIVE_LIMIT:
+                return E.E_POSI_LIMIT_INPUT
+            if din & DI_NEGATIVE_LIMIT:
+                return E.E_NEGA_LIMIT_INPUT
         return 0
 
     def _end_job(self, job: Job | None, status: JobStatus, error_id: int = 0) -> None:

@@ -75,10 +75,11 @@ class _GroupMotionFB(_GroupRef, ExecuteFB):
     def builder(self, group: AxesGroup) -> Callable[[tuple[float, ...]], Path | int]:
         raise NotImplementedError
 
-    def may_start(self, group: AxesGroup, input_error: int, *, motion: bool = True) -> bool:
+    def may_start(self, group: AxesGroup, input_error: int) -> bool:
         """The start checks in the manual's order: input errors, the group's state (CommandAborted or an error), the
-        composition axes (`motion`: their limit inputs too), the instruction's own checks. False: the instance
-        already shows why it did not start."""
+        composition axes (servo, home, MC_Stop, limit inputs: for every group motion instruction, including
+        MC_GroupSyncMoveAbsolute, D130), the instruction's own checks. False: the instance already shows why it did
+        not start."""
         if input_error:
             self.fail(input_error, group)
             return False
@@ -86,7 +87,7 @@ class _GroupMotionFB(_GroupRef, ExecuteFB):
         if verdict == "abort":
             self._finish("CommandAborted")
             return False
-        code = code if verdict == "error" else group.member_error(motion=motion) or self.specific_error(group)
+        code = code if verdict == "error" else group.member_error() or self.specific_error(group)
         if code:
             self.fail(code, group)
             return False
@@ -304,7 +305,7 @@ class MC_GroupSyncMoveAbsolute(_GroupMotionFB):
 
     def execute(self, axis: Any) -> None:
         group: AxesGroup = axis
-        if not self.may_start(group, self.common_error(), motion=False):
+        if not self.may_start(group, self.common_error()):
             return
         job = Job(JobKind.GROUP_SYNC, self)
         code = group.submit(job)
