@@ -11,6 +11,7 @@ request field is capped (see `_bounded`). Findings and how to run deeper: docs/h
 from __future__ import annotations
 
 import os
+import re
 from pathlib import Path
 from typing import Any
 
@@ -23,8 +24,9 @@ from schemathesis.checks import not_a_server_error
 from schemathesis.generation.modes import GenerationMode
 from schemathesis.specs.openapi.checks import response_schema_conformance, status_code_conformance
 
+from mcstudio.api.app import create_app
 from mcstudio.api.openapi_export import openapi_document
-from tests.hardening.conftest import demo_app
+from tests.hardening.conftest import demo_app, demo_studio
 
 EXAMPLES = int(os.environ.get("MCSTUDIO_FUZZ_EXAMPLES", "12"))
 CHECKS = [not_a_server_error, response_schema_conformance, status_code_conformance]
@@ -128,3 +130,116 @@ def test_project_error_paths_with_brackets_in_keys(tmp_path: Path, key: str) -> 
         r = c.put("/api/v1/project", json={key: None})
     assert r.status_code == 422, r.text
     assert all(isinstance(d["loc"], list) and d["loc"][0] == "body" for d in r.json()["detail"])
+
+
+# A JSON true/false where a number is expected (D129). Found by `st run --checks all`: pydantic's lax mode read
+# `"pre_trigger_percent": false` as 0.0 and answered 200.
+def _axis_config_with_bool(c: TestClient) -> tuple[str, str, Any, list[Any]]:
+    cfg = c.get("/api/v1/axes/MC_Axis001").json()["config"]
+    cfg["parameters"]["Operation"]["MaxVel"] = True
+    return "PUT", "/api/v1/axes/MC_Axis001/config", cfg, ["parameters", "Operation", "MaxVel"]
+
+
+_TRIGGER = {"variable": {"kind": "axis", "target": "MC_Axis000", "name": "Cmd.Pos"}, "condition": "rising",
+            "level": 0.5, "pre_trigger_percent": False}
+_TRACE = {"name": "T", "variables": [{"kind": "axis", "target": "MC_Axis000", "name": "Cmd.Pos"}], "mode": "single",
+          "trigger": _TRIGGER}
+
+
+@pytest.mark.parametrize("request_of", [
+    lambda c: ("PUT", "/api/v1/project/traces", [_TRACE], [0, "trigger", "pre_trigger_percent"]),
+    lambda c: ("POST", "/api/v1/traces", {**_TRACE, "samples": True}, ["samples"]),
+    lambda c: ("POST", "/api/v1/controller/step", {"cycles": True}, ["cycles"]),
+    lambda c: ("POST", "/api/v1/groups/MC_Group000/kinematics/inverse", {"position": [0, True, -400]}, ["position"]),
+    _axis_config_with_bool,
+], ids=["trace-trigger-percent", "trace-samples", "step-cycles", "kinematics-list-item", "axis-MaxVel"])
+def test_boolean_is_not_a_number(tmp_path: Path, request_of: Any) -> None:
+    """A boolean for an int/float field (or an item of a list of numbers) is a 422 naming the field — never 1/0."""
+    with TestClient(demo_app(tmp_path)) as c:
+        before = c.get("/api/v1/project").json()
+        method, path, body, loc = request_of(c)
+        r = c.request(method, path, json=body)
+        assert r.status_code == 422, r.text
+        errors = r.json()["detail"]
+        assert any(e["loc"][1:len(loc) + 1] == loc and "boolean" in e["msg"] for e in errors), errors
+        assert c.get("/api/v1/project").json() == before  # nothing applied
+    if path.endswith("inverse"):
+        assert "position[1]" in errors[0]["msg"]
+
+
+@pytest.mark.parametrize(("path", "body", "loc"), [
+    ("/api/v1/project/save-as", {"name": "copy", "overwrite": 0}, ["overwrite"]),
+    ("/api/v1/faults", {"kind": "drive_fault", "node_address": 1, "code": 8976, "persistent": 1}, ["persistent"]),
+    ("/api/v1/faults", {"kind": "drive_fault", "node_address": 1, "code": 8976, "persistent": "yes"}, ["persistent"]),
+    ("/api/v1/controller/step", {"cycles": 1, "until": {"fb": 1, "output": "ErrorID", "equals": 0}}, None),
+])
+def test_a_bool_field_takes_only_true_or_false(tmp_path: Path, path: str, body: Any, loc: list[str] | None) -> None:
+    """0/1 or "yes" for a BOOL field is a 422 naming it (pydantic would read them as false/true and act on them).
+    `until.equals` compares with any output (BOOL or a number), so a number stays valid there."""
+    with TestClient(demo_app(tmp_path)) as c:
+        if loc is None:
+            fb = c.post("/api/v1/fb", json={"type": "MC_Power", "inputs": {"Axis": "MC_Axis000", "Enable": True}})
+            body["until"]["fb"] = fb.json()["id"]
+            assert c.post(path, json=body).status_code == 200
+            return
+        r = c.post(path, json=body)
+        assert r.status_code == 422, r.text
+        assert any(e["loc"][1:] == loc and "true or false" in e["msg"] for e in r.json()["detail"]), r.text
+        assert not (tmp_path / "projects" / "copy").exists()
+
+
+# 405s (D128). Found by `st run`: a method a path does not serve answered 404 behind the studio's page fallback
+# (GET /control/release), 422 (DELETE /traces/variables parsed "variables" as a trace id), or a 405 whose `Allow`
+# named only the first route's methods (OPTIONS /cams/{name}: `Allow: GET`, not DELETE, GET, PUT).
+_DOC = openapi_document()["paths"]
+_METHODS = ("GET", "PUT", "POST", "PATCH", "DELETE", "OPTIONS")
+
+
+def _concrete(template: str) -> str:
+    return re.sub(r"\{[^/]+\}", "1", template)
+
+
+@pytest.mark.parametrize("template", list(_DOC), ids=list(_DOC))
+def test_undocumented_method_is_405_with_allow(tmp_path: Path, template: str) -> None:
+    """Every method the path does not serve is a 405 whose `Allow` lists the methods it does serve: each
+    documented one, and each of them answers something other than 405. (/cams/generate also serves GET, PUT,
+    DELETE: there it is the cam table named "generate".)"""
+    documented = {m.upper() for m in _DOC[template] if m.upper() in _METHODS}
+    static = tmp_path / "static"
+    static.mkdir()
+    (static / "index.html").write_text("<!doctype html><title>MC Studio</title>")
+    app = create_app(demo_studio(tmp_path), static_dir=static)  # with the page fallback, as `mcstudio serve`
+    with TestClient(app) as c:
+        path = _concrete(template)
+        status = {m: c.request(m, path).status_code for m in _METHODS}
+        answered = {m for m, code in status.items() if code != 405}
+        assert documented <= answered, status
+        for method in sorted(set(_METHODS) - answered):
+            r = c.request(method, path)
+            assert set(r.headers["allow"].split(", ")) == answered, (method, r.headers["allow"], status)
+            assert method in r.json()["detail"]
+
+
+def test_page_fallback_still_serves_the_studio(tmp_path: Path) -> None:
+    static = tmp_path / "static"
+    static.mkdir()
+    (static / "index.html").write_text("<!doctype html><title>MC Studio</title>")
+    with TestClient(create_app(demo_studio(tmp_path), static_dir=static)) as c:
+        assert "MC Studio" in c.get("/axes/MC_Axis000").text  # a studio route, not an API one
+        assert c.get("/api/v1/no-such-thing").status_code == 404
+        assert c.get("/api/v1/traces/not-a-number").status_code == 404  # not a trace id: no such trace
+
+
+def test_cam_master_velocity_is_a_positive_real(tmp_path: Path) -> None:
+    """Found by `st run` (seed 7): master_velocity 5e-324 (a double denormal, no REAL) made every segment's time_s
+    infinite, sent as null against the schema's number. The smallest positive normal REAL is the floor now."""
+    from mcstudio.project.cam_models import REAL_MIN_NORMAL
+
+    nodes = [{"Phase": 90.0, "Distance": 10.0, "Curve": "_mcPolynomic5"},
+             {"Phase": 180.0, "Distance": 0.0, "Curve": "_mcCycloidal"}]
+    with TestClient(demo_app(tmp_path)) as c:
+        r = c.post("/api/v1/cams/generate", json={"nodes": nodes, "master_velocity": 5e-324})
+        assert r.status_code == 422 and r.json()["detail"][0]["loc"] == ["body", "master_velocity"], r.text
+        r = c.post("/api/v1/cams/generate", json={"nodes": nodes, "master_velocity": REAL_MIN_NORMAL})
+        assert r.status_code == 200, r.text
+        assert all(isinstance(s["time_s"], float) for s in r.json()["characteristics"]["segments"])

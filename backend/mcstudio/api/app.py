@@ -7,7 +7,7 @@ from collections.abc import AsyncIterator, Callable
 from pathlib import Path
 from typing import Any
 
-from fastapi import APIRouter, Depends, FastAPI
+from fastapi import APIRouter, Depends, FastAPI, Request
 from fastapi.middleware.cors import CORSMiddleware
 from fastapi.openapi.utils import get_openapi
 from fastapi.responses import FileResponse, JSONResponse
@@ -125,8 +125,11 @@ def create_app(studio: Studio, *, static_dir: Path | None = None, cors_origins: 
             return FileResponse(index, headers={"Cache-Control": "no-cache"})
 
         @app.get("/{path:path}", include_in_schema=False, response_model=None)
-        def spa(path: str) -> FileResponse | JSONResponse:
+        def spa(path: str, request: Request) -> FileResponse | JSONResponse:
             if path.startswith(("api/", "docs")):
+                # a GET on an API path that serves only other methods is a 405 (D128), an unknown one a 404
+                if errors.allowed_methods(app, request.url.path):
+                    return errors.method_not_allowed(request)
                 return JSONResponse({"detail": "Not Found"}, status_code=404)
             target = (static / path).resolve()
             if target.is_file() and static.resolve() in target.parents:

@@ -28,7 +28,9 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Literal
 
 from fastapi import HTTPException, Request
-from pydantic import BaseModel, ConfigDict, Field, StrictBool
+from pydantic import Field, StrictBool
+
+from ..modelbase import StrictModel
 
 if TYPE_CHECKING:
     from ..controller.kernel import Controller
@@ -67,8 +69,8 @@ def kind_of(method: str, path: str) -> Kind | None:
 
 
 # ---------------------------------------------------------------------------------------------------- models
-class _Model(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+class _Model(StrictModel):
+    pass
 
 
 class ControlHolder(_Model):

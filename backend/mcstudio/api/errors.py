@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 from typing import Any
 
 from fastapi import FastAPI, Request
@@ -54,6 +55,8 @@ def install(app: FastAPI) -> None:
         if _body_unreadable(exc):
             msg = "the body cannot be read" + ("" if exc.detail == _BODY_PARSE_ERROR else f": {exc.detail}")
             return JSONResponse(status_code=422, content={"detail": [_err(["body"], msg, "body_unreadable")]})
+        if exc.status_code == 405:
+            return method_not_allowed(request)
         return await http_exception_handler(request, exc)
 
     @app.exception_handler(RequestValidationError)
@@ -93,6 +96,41 @@ def install(app: FastAPI) -> None:
     @app.exception_handler(ConflictError)
     async def _conflict(_: Request, exc: ConflictError) -> JSONResponse:
         return JSONResponse(status_code=409, content={"detail": str(exc)})
+
+
+_HTTP_METHODS = ("get", "put", "post", "patch", "delete", "head", "options", "trace")
+
+
+def _documented_paths(app: Any) -> list[tuple[re.Pattern[str], list[str]]]:
+    """The OpenAPI paths as regexes with their documented methods; built once per app. A `{param}` is one path
+    segment, digits only for an integer parameter (as the route's `:int` convertor)."""
+    cached = getattr(app.state, "documented_paths", None)
+    if cached is None:
+        cached = []
+        for template, item in app.openapi().get("paths", {}).items():
+            integers = {p["name"] for op in item.values() if isinstance(op, dict)
+                        for p in op.get("parameters", []) if p.get("in") == "path"
+                        and p.get("schema", {}).get("type") == "integer"}
+            pattern = re.sub(r"\\\{([^/]+?)\\\}", lambda m, ints=integers: "[0-9]+" if m[1] in ints else "[^/]+",
+                             re.escape(template))
+            cached.append((re.compile(f"^{pattern}$"), sorted(m.upper() for m in item if m in _HTTP_METHODS)))
+        app.state.documented_paths = cached
+    return cached
+
+
+def allowed_methods(app: Any, path: str) -> list[str]:
+    """Every method the API serves at this path, over all the operations whose path matches it (/cams/generate is
+    also the cam table "generate"). Starlette's own 405 named only the first matching route's methods, so a path
+    with GET and PUT on two routes answered `Allow: GET` (found by schemathesis, D128)."""
+    return sorted({m for pattern, documented in _documented_paths(app) if pattern.match(path) for m in documented})
+
+
+def method_not_allowed(request: Request) -> JSONResponse:
+    allow = allowed_methods(request.app, request.url.path)
+    if not allow:  # no operation has this path (only the page fallback's GET matched it): nothing is here
+        return JSONResponse({"detail": "Not Found"}, status_code=404)
+    return JSONResponse({"detail": f"{request.method} is not allowed here; allowed: {', '.join(allow) or 'none'}"},
+                        status_code=405, headers={"Allow": ", ".join(allow)})
 
 
 def _split_path(path: str) -> list[Any]:

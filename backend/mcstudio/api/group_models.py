@@ -10,8 +10,9 @@ from __future__ import annotations
 
 from typing import Annotated
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import Field, model_validator
 
+from ..modelbase import StrictModel
 from ..project.models import AxesGroupConfig
 from .models import RefEvent
 
@@ -21,8 +22,8 @@ Finite = Annotated[float, Field(allow_inf_nan=False)]
 Vec3 = Annotated[list[Finite], Field(min_length=3, max_length=3)]
 
 
-class _Model(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+class _Model(StrictModel):
+    pass
 
 
 # ---------------------------------------------------------------------------------------------- _sGROUP_REF

@@ -4,15 +4,16 @@ from __future__ import annotations
 
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import Field
 
+from ..modelbase import StrictModel
 from ..project.trace_models import TraceSettings, VariableKind
 
 TraceState = Literal["waiting", "triggered", "done", "running", "stopped"]
 
 
-class _Model(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+class _Model(StrictModel):
+    pass
 
 
 class TraceSummary(_Model):

@@ -10,11 +10,13 @@ from __future__ import annotations
 
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import Field
+
+from ..modelbase import StrictModel
 
 
-class _M(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+class _M(StrictModel):
+    pass
 
 
 class PdoEntryDescription(_M):

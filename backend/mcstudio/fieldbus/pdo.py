@@ -13,8 +13,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import Field
 
+from ..modelbase import StrictModel
 from .devices import DeviceDescription, PdoDescription
 from .objects import DATA_TYPES, object_def
 
@@ -25,8 +26,8 @@ MAX_MAPPING_ENTRIES = 254  # subindexes 1–254 of a mapping object (`PdoMapping
 MAX_ASSIGNED = 254  # subindexes 1–254 of 1C12h/1C13h (`SlavePdoConfig.rx_assign`/`tx_assign`)
 
 
-class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+class _Strict(StrictModel):
+    pass
 
 
 class PdoEntryConfig(_Strict):

@@ -14,13 +14,14 @@ from __future__ import annotations
 
 import re
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator
+from pydantic import ConfigDict, Field, field_validator
 
 from ..controller.mc.cam.generate import MAX_NODE_ELEMENTS, NODE_CODES, PROPERTY_CODES, GenerateError, plan
 from ..controller.mc.cam.generate import _sMC_CAM_NODE as CamNodeData
 from ..controller.mc.cam.generate import _sMC_CAM_PROPERTY as CamPropertyData
 from ..controller.mc.cam.table import MAX_POINTS
 from ..controller.mc.enums import _eMC_CAM_CURVE
+from ..modelbase import StrictModel
 from .enumtypes import ManualEnum
 
 __all__ = ["CAM_FOLDER", "MAX_CAMS", "CamDefinition", "CamNode", "CamProperty", "CamSource", "check_cams",
@@ -29,10 +30,11 @@ __all__ = ["CAM_FOLDER", "MAX_CAMS", "CamDefinition", "CamNode", "CamProperty", 
 CAM_FOLDER = "cams"
 MAX_CAMS = 256
 REAL_MAX = 3.4028234663852886e38
+REAL_MIN_NORMAL = 1.1754943508222875e-38  # the smallest positive normal REAL
 _IDENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]{0,62}$")
 
 
-class _Strict(BaseModel):
+class _Strict(StrictModel):
     model_config = ConfigDict(extra="forbid", validate_assignment=True, allow_inf_nan=False)
 
 
@@ -77,8 +79,8 @@ class CamSource(_Strict):
     property: CamProperty = Field(default_factory=CamProperty, description="CamProperty")
     nodes: list[CamNode] = Field(min_length=1, max_length=MAX_NODE_ELEMENTS, description="CamNodes, in order")
     master_velocity: float | None = Field(
-        None, gt=0, le=REAL_MAX, description="Master velocity for the characteristic values [master units/s]; null = "
-        "the last node's Phase / CycleTime")
+        None, ge=REAL_MIN_NORMAL, le=REAL_MAX, description="Master velocity for the characteristic values [master "
+        "units/s], a positive REAL; null = the last node's Phase / CycleTime")
     periodic: bool = Field(False, description="Check continuity across the wrap to the next cycle (a periodic cam)")
 
     def inputs(self) -> tuple[list[CamNodeData], CamPropertyData]:

@@ -11,7 +11,7 @@ from __future__ import annotations
 import re
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import ConfigDict, Field, field_validator, model_validator
 
 from ..controller.mc.enums import (
     _eMC_ACCDECOVER,
@@ -31,6 +31,7 @@ from ..controller.mc.enums import (
 )
 from ..controller.mc.kinematics import Delta3Params, Delta3Workspace
 from ..fieldbus.pdo import SlavePdoConfig
+from ..modelbase import StrictModel
 from ..plant.ideal import DEFAULT_INERTIA, DEFAULT_LOAD_TORQUE, DEFAULT_RATED_TORQUE, DEFAULT_VISCOUS_FRICTION
 from .cam_models import MAX_CAMS, CamDefinition
 from .enumtypes import ManualEnum
@@ -46,7 +47,7 @@ LREAL_MAX = 1.7976931348623157e308
 PRIMARY_PERIODS_US = (125, 250, 500, 1000, 2000, 4000, 8000)
 
 
-class _Strict(BaseModel):
+class _Strict(StrictModel):
     model_config = ConfigDict(extra="forbid", validate_assignment=True, allow_inf_nan=False)
 
 

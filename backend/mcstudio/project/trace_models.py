@@ -10,7 +10,9 @@ from __future__ import annotations
 
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import ConfigDict, Field, model_validator
+
+from ..modelbase import StrictModel
 
 MAX_TRACES = 8  # traces running at once in one controller
 MAX_VARIABLES = 32  # variables per trace
@@ -22,7 +24,7 @@ Condition = Literal["rising", "falling", "gt", "lt", "eq", "ne"]
 Mode = Literal["single", "continuous", "repeat"]
 
 
-class _Strict(BaseModel):
+class _Strict(StrictModel):
     model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
 
 

@@ -1412,7 +1412,7 @@ export interface components {
             nodes: components["schemas"]["CamNode-Input"][];
             /**
              * Master Velocity
-             * @description Master velocity for the characteristic values [master units/s]; null = the last node's Phase / CycleTime
+             * @description Master velocity for the characteristic values [master units/s], a positive REAL; null = the last node's Phase / CycleTime
              */
             master_velocity?: number | null;
             /**
@@ -1889,7 +1889,7 @@ export interface components {
             nodes: components["schemas"]["CamNode-Input"][];
             /**
              * Master Velocity
-             * @description Master velocity for the characteristic values [master units/s]; null = the last node's Phase / CycleTime
+             * @description Master velocity for the characteristic values [master units/s], a positive REAL; null = the last node's Phase / CycleTime
              */
             master_velocity?: number | null;
             /**
@@ -1913,7 +1913,7 @@ export interface components {
             nodes: components["schemas"]["CamNode-Output"][];
             /**
              * Master Velocity
-             * @description Master velocity for the characteristic values [master units/s]; null = the last node's Phase / CycleTime
+             * @description Master velocity for the characteristic values [master units/s], a positive REAL; null = the last node's Phase / CycleTime
              */
             master_velocity?: number | null;
             /**

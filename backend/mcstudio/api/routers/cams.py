@@ -20,6 +20,7 @@ from ...controller.kernel import Controller
 from ...controller.mc.cam.csvio import CamCsvError, format_cam_csv, parse_cam_csv
 from ...controller.mc.cam.generate import generate
 from ...controller.mc.cam.table import MAX_POINTS, CamTable
+from ...modelbase import StrictModel
 from ...project.cam_models import MAX_CAMS, CamDefinition, CamSource, error_code, error_path
 from ...project.cams import (
     generate_table,
@@ -46,12 +47,12 @@ CamName = Annotated[str, Path(pattern=r"^[A-Za-z_][A-Za-z0-9_]{0,62}$",
 
 
 # ------------------------------------------------------------------------------------------------ models
-class CamPoints(BaseModel):
+class CamPoints(StrictModel):
     phase: list[float] = Field(max_length=MAX_POINTS, description="Master phases, from 0, strictly ascending")
     distance: list[float] = Field(max_length=MAX_POINTS, description="Slave distances, the first 0")
 
 
-class CamIn(BaseModel):
+class CamIn(StrictModel):
     """A cam table definition and its data: from nodes (`source`) or from `points`; with neither, the current data
     are kept (only the description or size change)."""
 

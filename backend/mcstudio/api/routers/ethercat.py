@@ -13,6 +13,7 @@ from ...fieldbus.devices import DeviceDescription, EsiFile, PdoDescription
 from ...fieldbus.library import ESI_FOLDER, MAX_ESI_BYTES
 from ...fieldbus.network import ESM, Network, Slave
 from ...fieldbus.pdo import SlavePdoConfig, validate_pdo_config
+from ...modelbase import StrictModel
 from ...project.io import Issue, ProjectError, atomic_write, parse_project
 from ...project.models import EtherCATConfig, EtherCATMasterConfig
 from ..deps import get_studio
@@ -106,7 +107,7 @@ class DeviceSummary(BaseModel):
     tx_pdos: int
 
 
-class FaultIn(BaseModel):
+class FaultIn(StrictModel):
     kind: Literal["slave_disconnect", "slave_reconnect", "drive_fault", "drive_fault_clear", "main_power_off",
                   "main_power_on", "encoder_velocity"] = Field(description="What happens on the machine")
     node_address: int = Field(ge=1, le=65534, description="The slave it happens to")

@@ -11,8 +11,9 @@ from __future__ import annotations
 import math
 
 from fastapi import APIRouter, Depends
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import Field
 
+from ...modelbase import StrictModel
 from ...viz.robots import read_robot, robot_specs
 from ..deps import get_studio
 from ..state import Studio
@@ -20,8 +21,8 @@ from ..state import Studio
 router = APIRouter(tags=["viz"])
 
 
-class _Model(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+class _Model(StrictModel):
+    pass
 
 
 class RobotAxisOut(_Model):

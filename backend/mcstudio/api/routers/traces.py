@@ -67,7 +67,7 @@ def create_trace(body: TraceSettings, studio: Studio = Depends(get_studio)) -> T
     return studio.runner.call(lambda c: _summary(c.traces.configure(body)))
 
 
-@router.get("/traces/{trace_id}", response_model=TraceData, summary="State and samples of a trace",
+@router.get("/traces/{trace_id:int}", response_model=TraceData, summary="State and samples of a trace",
             description="The record (in repeat mode the last complete one, once there is one), oldest sample first. "
             "`max_points` decimates for plotting (every k-th sample, the smallest k giving at most that many); "
             "`decimation` sets k directly.", responses=NOT_FOUND)
@@ -86,7 +86,7 @@ def get_trace(trace_id: int, studio: Studio = Depends(get_studio),
     )
 
 
-@router.get("/traces/{trace_id}/csv", summary="The record as CSV (every sample)",
+@router.get("/traces/{trace_id:int}/csv", summary="The record as CSV (every sample)",
             response_class=Response, responses={200: {"content": {"text/csv": {}}}, **NOT_FOUND})
 def trace_csv(trace_id: int, studio: Studio = Depends(get_studio)) -> Response:
     d, _ = _read(studio, trace_id)
@@ -103,19 +103,19 @@ def trace_csv(trace_id: int, studio: Studio = Depends(get_studio)) -> Response:
                     headers={"Content-Disposition": f'attachment; filename="{name}.csv"'})
 
 
-@router.post("/traces/{trace_id}/stop", response_model=TraceSummary, summary="Stop recording (samples are kept)",
+@router.post("/traces/{trace_id:int}/stop", response_model=TraceSummary, summary="Stop recording (samples are kept)",
              responses=NOT_FOUND)
 def stop_trace(trace_id: int, studio: Studio = Depends(get_studio)) -> TraceSummary:
     return studio.runner.call(lambda c: _summary(c.traces.stop(trace_id)))
 
 
-@router.post("/traces/{trace_id}/restart", response_model=TraceSummary,
+@router.post("/traces/{trace_id:int}/restart", response_model=TraceSummary,
              summary="Discard the samples and start again with the same settings", responses=NOT_FOUND)
 def restart_trace(trace_id: int, studio: Studio = Depends(get_studio)) -> TraceSummary:
     return studio.runner.call(lambda c: _summary(c.traces.restart(trace_id)))
 
 
-@router.delete("/traces/{trace_id}", status_code=204, summary="Delete a trace and free its rings",
+@router.delete("/traces/{trace_id:int}", status_code=204, summary="Delete a trace and free its rings",
                responses=NOT_FOUND)
 def delete_trace(trace_id: int, studio: Studio = Depends(get_studio)) -> Response:
     studio.runner.call(lambda c: c.traces.delete(trace_id))
