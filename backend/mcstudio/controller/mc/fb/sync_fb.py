@@ -18,7 +18,7 @@ from ..sync import REF_FEEDBACK, REF_LATEST, CamLaw, CombineLaw, CyclicPositionL
 from ..units import fits_distance, fits_position
 from .base import I_EXECUTE, O_ABORTED, O_ACTIVE, O_BUSY, O_DONE, O_ERROR, O_ERRORID, ExecuteFB, FBDef, Var
 from .latch import IO_TRIGGER, IO_TRIGGER_VAR, _Latcher, latch_pdo_missing, parse_trigger
-from .single_axis import _clamp_profile
+from .single_axis import _clamp_profile, start_limit_error
 
 if TYPE_CHECKING:
     from ..axis import Axis
@@ -76,15 +76,23 @@ I_RATIO_DEN = Var("RatioDenominator", "UDINT", 10000, "Gear ratio denominator", 
 I_OUT_MODE = Var("OutMode", "_eMC_OUT_MODE", 0, "Reserved: _mcStop", None, "0", allowed=(0,))
 
 
-def _may_start(fb: ExecuteFB, axis: Axis, accept: str, check: Callable[[Axis], int]) -> bool:
+def _may_start(fb: ExecuteFB, axis: Axis, accept: str, check: Callable[[Axis], int], *,
+               direction_less: bool = False) -> bool:
     """The acceptance in the axis state (A-3, `acceptance.py`) and the instruction's input checks — input errors
-    before state errors (D2); False once the instance shows CommandAborted or Error."""
+    before state errors (D2); False once the instance shows CommandAborted or Error.
+
+    `direction_less`: a motion instruction that specifies no direction of motion (synchronized control and the
+    cyclic synchronous instructions, decision D132) is refused with 6443/6444 while either limit input of the axis is
+    ON (A-1 #145/#146, seed 000 lines 21279–21300) — after the input and state checks, as the limit checks of the
+    direction-defined instructions come after theirs (`_MotionFB.execute`)."""
     verdict, code = axis.check_start(accept)
     if verdict == "abort":
         fb._finish("CommandAborted")
         return False
     if code != E.E_AXIS_TYPE:  # an encoder axis is refused before anything else (A-3.7)
         code = check(axis) or code
+    if not code and direction_less:
+        code = start_limit_error(axis, 0)  # direction 0, no target: the limit inputs only
     if code:
         fb.fail(code, axis)
         return False
@@ -132,7 +140,7 @@ class _SyncFB(ExecuteFB):
         raise NotImplementedError
 
     def execute(self, axis: Axis) -> None:
-        if not _may_start(self, axis, self.ACCEPT, self._check):
+        if not _may_start(self, axis, self.ACCEPT, self._check, direction_less=True):
             return
         job = Job(JobKind.SYNC, self, buffer_mode=self.inp.get("BufferMode", 0))
         job.info["law"] = self._law(axis, job)
@@ -972,7 +980,7 @@ class MC_SyncMoveAbsolute(_SyncFB):
         return target
 
     def execute(self, axis: Axis) -> None:
-        if not _may_start(self, axis, self.ACCEPT, self._check):
+        if not _may_start(self, axis, self.ACCEPT, self._check, direction_less=True):
             return
         job = Job(JobKind.CYCLIC, self, buffer_mode=0)
         job.info["law"] = CyclicPositionLaw(self.mc, job, axis, self._resolve(axis))
@@ -1041,7 +1049,7 @@ class MC_SyncMoveVelocity(ExecuteFB):
         return max(-vmax, min(vmax, v))
 
     def execute(self, axis: Axis) -> None:
-        if not _may_start(self, axis, "move", self._check):
+        if not _may_start(self, axis, "move", self._check, direction_less=True):
             return
         job = Job(JobKind.CSV, self, buffer_mode=self.inp["BufferMode"])
         job.velocity = self._velocity(axis)
