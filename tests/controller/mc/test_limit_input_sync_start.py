@@ -282,3 +282,29 @@ def test_cam_buffered_onto_a_running_cam_is_6444() -> None:
     c.step(1)
     assert nxt.Error and nxt.ErrorID == 0x6444 and not nxt.Busy, nxt.outputs_json()
     assert cam.CommandAborted and _slave(c).state == AxisState.ErrorStop
+
+
+# ------------------------------------------------------------------------------------- 6442 (position overflow)
+@pytest.mark.parametrize("sign", [1, -1], ids=["overflow", "underflow"])
+@pytest.mark.parametrize("name", list(DIRECTIONLESS))
+def test_direction_less_instruction_in_position_overflow_is_6442(name: str, sign: int) -> None:
+    """A-1 #144 (seed 000 line 21275, basics L1154): 6442 when, while the command position is in overflow/underflow,
+    "an instruction of indeterminate direction (synchronization functions, torque control)" is executed — the same
+    instructions D132 counts as direction-less. The slave is driven to the edge of the 40-bit pulse range by a
+    velocity move (overflow itself is no error), then the instruction's Execute↑ gives 6442 in that period."""
+    c = _rig({})
+    edge = (2**39 - 1) / PPU if sign > 0 else -(2**39) / PPU
+    sp = c.fb("MC_SetPosition", Axis=S, Execute=True, Position=edge - sign * 5.0)
+    step_until(c, sp, "Done")
+    mv = c.fb("MC_MoveVelocity", Axis=S, Execute=True, Velocity=50.0, Acceleration=1000.0, Deceleration=1000.0,
+              Direction="_mcPositiveDirection" if sign > 0 else "_mcNegativeDirection")
+    step_until(c, mv, "CommandAborted", limit=2000)
+    slave = _slave(c)
+    assert slave.state == AxisState.Standstill and not slave.error_code
+    assert c.mc.ovf[slave.i] == sign
+    fb = c.fb(name, Execute=False, **DIRECTIONLESS[name])
+    c.step(1)
+    c.set_inputs(fb.id, {"Execute": True})
+    c.step(1)
+    assert fb.Error and fb.ErrorID == 0x6442 and not fb.Busy, (fb.ErrorID, fb.Busy)
+    assert slave.state == AxisState.ErrorStop and slave.error_code == 0x6442

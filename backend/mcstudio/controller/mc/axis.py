@@ -129,11 +129,14 @@ class Axis(AxisPlanning):
                          "(MC_SetPosition) or home before positioning again (6442)")
 
     def overflow_refusal(self, job: Job) -> int:
-        """6442 for an instruction the overflow/underflow state forbids (A-1 #144), else 0."""
+        """6442 for an instruction the overflow/underflow state forbids (A-1 #144, seed 000 line 21275): positioning,
+        continuous control toward the overflow side, and the instructions of indeterminate direction — torque control
+        and the synchronization functions (MC_CamIn, MC_GearIn, MC_GearInPos, MC_MoveLink, MC_CombineAxes and the
+        cyclic synchronous MC_SyncMoveAbsolute / MC_SyncMoveVelocity, as D132 reads "no defined direction"), else 0."""
         sign = int(self.m.ovf[self.i])
         if not sign:
             return 0
-        if job.kind in (JobKind.POSITION, JobKind.TORQUE):
+        if job.kind in (JobKind.POSITION, JobKind.TORQUE, JobKind.SYNC, JobKind.CYCLIC, JobKind.CSV):
             return E.E_POSITION_OVERFLOW
         if job.kind in (JobKind.VELOCITY, JobKind.JOG):
             direction = (job.velocity > 0) - (job.velocity < 0)
