@@ -54,6 +54,8 @@ def main(argv: list[str] | None = None) -> int:
     soak = sub.add_parser("soak", help="the demo in fast mode under random valid commands for a long time (not in all)")
     soak.add_argument("--minutes", type=float, default=60.0)
     soak.add_argument("--seed", type=int, default=1)
+    soak.add_argument("--tracemalloc", action="store_true",
+                      help="trace Python allocations; report the sites whose memory grew after warm-up")
     a = sub.add_parser("all", help="every scenario, each in its own process, with short durations")
     a.add_argument("--realtime-seconds", type=float, default=60.0)
     args = p.parse_args(argv)
@@ -94,7 +96,7 @@ def main(argv: list[str] | None = None) -> int:
     elif args.scenario == "soak":
         from . import soak as soak_bench
 
-        result = soak_bench.run(minutes=args.minutes, seed=args.seed)
+        result = soak_bench.run(minutes=args.minutes, seed=args.seed, trace_memory=args.tracemalloc)
     elif args.scenario == "side-by-side":
         from . import sidebyside
 

@@ -25,6 +25,7 @@ import shutil
 import tempfile
 import threading
 import time
+import tracemalloc
 from pathlib import Path
 from typing import Any
 
@@ -173,8 +174,23 @@ class _Soak:
             self.traces.append(int(r.json()["id"]))
 
 
-def run(*, minutes: float, seed: int = 1, project_dir: Path = DEMO) -> dict[str, Any]:
+def _growth(before: tracemalloc.Snapshot, after: tracemalloc.Snapshot, top: int = 12) -> list[dict[str, Any]]:
+    """The allocation sites whose live memory grew most between two snapshots (Python objects only)."""
+    stats = after.compare_to(before, "lineno")
+    return [{"site": f"{st.traceback[0].filename.split('site-packages/')[-1].split('backend/')[-1]}:"
+                     f"{st.traceback[0].lineno}",
+             "kib": round(st.size_diff / 1024, 1), "blocks": st.count_diff}
+            for st in sorted(stats, key=lambda st: st.size_diff, reverse=True)[:top]]
+
+
+def run(*, minutes: float, seed: int = 1, project_dir: Path = DEMO, trace_memory: bool = False) -> dict[str, Any]:
+    """`trace_memory`: tracemalloc from the start; the growth of live Python memory by allocation site between the
+    first sample after warm-up (the second) and the end is reported as `growth_sites` (slows everything ~2×)."""
     from fastapi.testclient import TestClient
+
+    if trace_memory:
+        tracemalloc.start()
+    snapshots: list[tracemalloc.Snapshot] = []
 
     seconds = minutes * 60.0
     sample_every = min(60.0, seconds / 5)
@@ -217,6 +233,8 @@ def run(*, minutes: float, seed: int = 1, project_dir: Path = DEMO) -> dict[str,
                                     "cycle": ctrl.cycle, "events_total": ctrl.events.last_seq,
                                     "event_log": len(ctrl.events.list()), "instances": len(ctrl.program),
                                     "traces": len(soak.traces)})
+                    if trace_memory and len(samples) == 2:
+                        snapshots.append(tracemalloc.take_snapshot())
                     next_sample += sample_every
                 soak.step()
                 if runner.mode != "fast":  # an internal error paused the kernel: count it and go on
@@ -229,6 +247,8 @@ def run(*, minutes: float, seed: int = 1, project_dir: Path = DEMO) -> dict[str,
             samples.append({"t_s": round(wall, 1), "rss_mb": round(_rss_mb(), 1), "cycle": ctrl.cycle,
                             "events_total": ctrl.events.last_seq, "event_log": len(ctrl.events.list()),
                             "instances": len(ctrl.program), "traces": len(soak.traces)})
+            if trace_memory:
+                snapshots.append(tracemalloc.take_snapshot())
             stop.set()
             reader.join(timeout=30)  # its socket closes before the client does (else both wait on each other)
             events = ctrl.events.list()
@@ -251,5 +271,8 @@ def run(*, minutes: float, seed: int = 1, project_dir: Path = DEMO) -> dict[str,
         "events_total": samples[-1]["events_total"], "event_log_len": samples[-1]["event_log"],
         "ws_messages": ws_messages,
         "rss_mb": rss, "rss_growth_mb": round(rss[-1] - rss[1 if len(rss) > 2 else 0], 1),
+        "python_mb_growth": (round(sum(st.size_diff for st in snapshots[1].compare_to(snapshots[0], "filename"))
+                                   / 2**20, 2) if len(snapshots) == 2 else None),
+        "growth_sites": _growth(*snapshots) if len(snapshots) == 2 else None,
         "samples": samples,
     }
