@@ -188,6 +188,22 @@ def test_disable_during_motion_aborts_and_decelerates_each_axis(c: Controller) -
     assert all(ax.state == AxisState.Standstill for ax in c.mc.axes[:2])
 
 
+def test_deleting_a_holding_group_stop_releases_the_group(c: Controller) -> None:
+    """D133: MC_GroupStop holds the group in Stopping while Execute stays TRUE (§4.7); deleting the instance acts
+    like Execute falling — Standby, and a new move runs. Before, the group stayed in Stopping for good."""
+    ready(c)
+    g = c.mc.groups_by_name["MC_Group000"]
+    st = c.fb("MC_GroupStop", AxesGroup="MC_Group000", Execute=True, Deceleration=500.0)
+    step_until(c, st, "Done")
+    assert g.state == G.Stopping
+    c.delete_fb(st.id)
+    c.step(1)
+    assert g.state == G.Standby
+    mv = c.fb("MC_MoveLinearRelative", AxesGroup="MC_Group000", Execute=True, Distance=[1.0, 0.0], Velocity=10.0,
+              Acceleration=1000.0, Deceleration=1000.0)
+    step_until(c, mv, "Done", limit=1000)
+
+
 def test_read_position_change_axes_and_sync_move(c: Controller) -> None:
     """§4.10 positions of A0–A3 while Enable (disabled group too); §4.11 only while disabled (543C otherwise), new
     axes in Kinematics.Axis; §4.12 the target each period, InPosition, no Done, MC_GroupStop stops it at once."""

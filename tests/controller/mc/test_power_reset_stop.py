@@ -187,3 +187,31 @@ def test_servo_off_ends_stop_with_done(ctrl: Controller) -> None:
     pw.Enable = False
     ctrl.step(1)
     assert st.Done and not st.CommandAborted
+
+
+def test_deleting_a_holding_stop_releases_the_axis(ctrl: Controller) -> None:
+    """D133: MC_Stop holds the axis in Stopping while Execute stays TRUE (seed 000 MC_Stop, omron-axis-instructions.md
+    MC_Stop); deleting the instance then acts like Execute falling. Before, the axis stayed in Stopping with nothing
+    left to release it and every motion instruction was CommandAborted. Deleted mid-deceleration, the stop still
+    decelerates to 0 before Standstill."""
+    power_on(ctrl)
+    mv = ctrl.fb("MC_MoveVelocity", Axis="MC_Axis000", Execute=True, Velocity=50.0, Acceleration=1000.0,
+                 Deceleration=1000.0)
+    step_until(ctrl, mv, "InVelocity")
+    st = ctrl.fb("MC_Stop", Axis="MC_Axis000", Execute=True, Deceleration=500.0)
+    ctrl.step(10)
+    ax = ctrl.mc.axes[0]
+    assert ax.state == AxisState.Stopping and 0.0 < ctrl.mc.cmd_vel[0] < 50.0
+    ctrl.delete_fb(st.id)  # mid-deceleration
+    ctrl.step(1)
+    assert ax.state == AxisState.Stopping and ctrl.mc.cmd_vel[0] > 0.0, "the stop itself goes on"
+    ctrl.step(100)  # 50 mm/s at 500 mm/s² = 100 periods in all
+    assert ctrl.mc.cmd_vel[0] == 0.0 and ax.state == AxisState.Standstill
+    st2 = ctrl.fb("MC_Stop", Axis="MC_Axis000", Execute=True, Deceleration=500.0)
+    step_until(ctrl, st2, "Done")
+    ctrl.delete_fb(st2.id)  # stopped, Execute still TRUE: the hold ends at once
+    ctrl.step(1)
+    assert ax.state == AxisState.Standstill
+    again = ctrl.fb("MC_MoveRelative", Axis="MC_Axis000", Execute=True, Distance=1.0, Velocity=10.0,
+                    Acceleration=100.0, Deceleration=100.0)
+    step_until(ctrl, again, "Done", limit=1000)

@@ -268,6 +268,14 @@ class MC_GroupStop(_GroupRef, ExecuteFB):
             self._holding.hold_stop(self.id, False)
             self._holding = None
 
+    def on_delete(self) -> None:
+        # D133: deleting an instance that holds the group in Stopping releases it as Execute falling would; nothing
+        # else could (the group stayed in Stopping and refused every motion)
+        if self._holding is not None:
+            self._holding.hold_stop(self.id, False)
+            self._holding = None
+        super().on_delete()
+
 
 # --------------------------------------------------------------------------------------------------- override, read
 class MC_GroupSetOverride(_GroupRef, _EnableFB):

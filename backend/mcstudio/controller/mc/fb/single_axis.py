@@ -267,6 +267,14 @@ class MC_Stop(ExecuteFB):
             self._holding.hold_stop(self.id, False)
             self._holding = None
 
+    def on_delete(self) -> None:
+        # D133: deleting an instance that holds the axis in Stopping releases it as Execute falling would; nothing
+        # else could (the axis stayed in Stopping and refused every motion)
+        if self._holding is not None:
+            self._holding.hold_stop(self.id, False)
+            self._holding = None
+        super().on_delete()
+
 
 # --------------------------------------------------------------------------------------------------- start checks
 def start_limit_error(axis: Axis, direction: int, target: float | None = None) -> int:
