@@ -75,6 +75,7 @@ class _Soak:
         self.exceptions: list[str] = []
         self.n_exceptions = 0
         self.instances: list[int] = []
+        self.stops: list[int] = []  # MC_Stop instances whose Execute is still TRUE
         self.traces: list[int] = []
 
     def req(self, method: str, path: str, **kw: Any) -> Any:
@@ -131,7 +132,15 @@ class _Soak:
             self.new_fb("MC_MoveVelocity", Axis=a, Execute=True, Velocity=v / 10, Acceleration=acc,
                         Deceleration=acc, Direction=rng.choice(["_mcPositiveDirection", "_mcNegativeDirection"]))
         elif k < 0.45:
-            self.new_fb("MC_Stop", Axis=a, Execute=True, Deceleration=acc)
+            held = [f for f in self.stops if f in self.instances]
+            if held and rng.random() < 0.6:  # the Stop button released: Execute↓ ends Stopping (MC_Stop)
+                fid = held[0]
+                self.stops.remove(fid)
+                self.req("PATCH", f"/fb/{fid}", json={"inputs": {"Execute": False}})
+            else:  # pressed; held until released or until the instance is deleted (D133)
+                fid = self.new_fb("MC_Stop", Axis=a, Execute=True, Deceleration=acc)
+                if fid is not None:
+                    self.stops.append(fid)
         elif k < 0.52:
             self.new_fb("MC_MoveJog", lease_s=rng.choice([0.2, 0.5, 1.0]), Axis=a,
                         PositiveEnable=rng.random() < 0.5, Velocity=v / 10, Acceleration=acc, Deceleration=acc)
@@ -172,6 +181,20 @@ class _Soak:
             "mode": "continuous"})
         if r is not None and r.status_code == 201:
             self.traces.append(int(r.json()["id"]))
+
+
+def _orphan_holds(c: Controller) -> int:
+    """Stop holds (MC_Stop / MC_GroupStop keeping Stopping) of instances that no longer exist: 0 (D133)."""
+    holders = [h for x in (*c.mc.axes, *c.mc.groups) for h in x.stop_holders]
+    return sum(1 for h in holders if h not in c.program)
+
+
+def _axis_states(c: Controller) -> dict[str, int]:
+    """How many axes are in each state at the sample (a state nobody leaves would show up here)."""
+    out: dict[str, int] = {}
+    for a in c.mc.axes:
+        out[a.state.name] = out.get(a.state.name, 0) + 1
+    return out
 
 
 def _growth(before: tracemalloc.Snapshot, after: tracemalloc.Snapshot, top: int = 12) -> list[dict[str, Any]]:
@@ -232,7 +255,8 @@ def run(*, minutes: float, seed: int = 1, project_dir: Path = DEMO, trace_memory
                     samples.append({"t_s": round(now - start, 1), "rss_mb": round(_rss_mb(), 1),
                                     "cycle": ctrl.cycle, "events_total": ctrl.events.last_seq,
                                     "event_log": len(ctrl.events.list()), "instances": len(ctrl.program),
-                                    "traces": len(soak.traces)})
+                                    "traces": len(soak.traces), "orphan_holds": _orphan_holds(ctrl),
+                                    "axis_states": _axis_states(ctrl)})
                     if trace_memory and len(samples) == 2:
                         snapshots.append(tracemalloc.take_snapshot())
                     next_sample += sample_every
@@ -246,7 +270,8 @@ def run(*, minutes: float, seed: int = 1, project_dir: Path = DEMO, trace_memory
             sim = ctrl.time_s - sim0
             samples.append({"t_s": round(wall, 1), "rss_mb": round(_rss_mb(), 1), "cycle": ctrl.cycle,
                             "events_total": ctrl.events.last_seq, "event_log": len(ctrl.events.list()),
-                            "instances": len(ctrl.program), "traces": len(soak.traces)})
+                            "instances": len(ctrl.program), "traces": len(soak.traces),
+                            "orphan_holds": _orphan_holds(ctrl), "axis_states": _axis_states(ctrl)})
             if trace_memory:
                 snapshots.append(tracemalloc.take_snapshot())
             stop.set()
@@ -269,7 +294,7 @@ def run(*, minutes: float, seed: int = 1, project_dir: Path = DEMO, trace_memory
         "major_faults": sum(1 for e in events if e.level == "major fault"),
         "contained_faults": sum(1 for e in events if e.code == "FFFF0000"),
         "events_total": samples[-1]["events_total"], "event_log_len": samples[-1]["event_log"],
-        "ws_messages": ws_messages,
+        "ws_messages": ws_messages, "orphan_holds_max": max(x["orphan_holds"] for x in samples),
         "rss_mb": rss, "rss_growth_mb": round(rss[-1] - rss[1 if len(rss) > 2 else 0], 1),
         "python_mb_growth": (round(sum(st.size_diff for st in snapshots[1].compare_to(snapshots[0], "filename"))
                                    / 2**20, 2) if len(snapshots) == 2 else None),
