@@ -40,6 +40,12 @@ def _assert_group_error(c: Controller, fb: Any, code: int, group: str = G0) -> N
     assert any(e.code == f"{code:04X}0000" for e in c.events.list())
 
 
+def _attached_axis(c: Controller, code: int) -> str:
+    """The latest event of `code`: its attached information (A-1: for a group source, the logical axis number of
+    the composition axis concerned — basics L1199)."""
+    return [e for e in c.events.list() if e.code == f"{code:04X}0000"][-1].detail
+
+
 def _execute_edge(c: Controller, name: str, group: str = G0, **inputs: Any) -> FunctionBlock:
     """Timing chart of a start error: the instance runs one period with Execute FALSE (nothing happens), then
     Execute↑ — in that same period Error is TRUE; Busy and Active never were (the instruction did not start) and the
@@ -274,6 +280,7 @@ def test_member_stopped_by_mc_stop_is_5442(name: str, inputs: dict[str, Any]) ->
     fb = _execute_edge(c, name, **inputs)
     _assert_group_error(c, fb, 0x5442)
     _members_keep_no_error(c)
+    assert _attached_axis(c, 0x5442) == "attached information 1: 1 (logical axis A1, MC_Axis001)"
     assert st.Done and not st.Error
     # the manual's remedy: release MC_Stop, reset the error, execute again
     c.set_inputs(st.id, {"Execute": False})
@@ -358,6 +365,7 @@ def test_limit_input_on_at_the_start(sensors: dict[str, float], name: str, input
     fb = _execute_edge(c, name, **inputs)
     _assert_group_error(c, fb, code)
     _members_keep_no_error(c)
+    assert _attached_axis(c, code) == "attached information 1: 1 (logical axis A1, MC_Axis001)"
     _group_reset(c)
     assert g.state == GroupState.Standby and not fb.Error
     again = _execute_edge(c, name, **inputs)  # the input is still ON: refused again

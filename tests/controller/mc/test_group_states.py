@@ -134,11 +134,25 @@ def test_error_of_a_motion_instruction_is_a_group_error(c: Controller) -> None:
 
 
 def test_unhomed_member_is_5466_and_servo_off_5441(c: Controller) -> None:
+    """A-1 5466 / 5441 at the start of a group motion instruction; the event's attached information 1 is the
+    logical axis number of the composition axis concerned (basics L1199)."""
     ready(c)
+    g = c.mc.groups_by_name["MC_Group000"]
     c.mc.axes[1].homed = False
     mv = c.fb("MC_MoveLinear", AxesGroup="MC_Group000", Execute=True, Position=[1.0, 1.0], Velocity=10.0)
     c.step(1)
     assert mv.ErrorID == 0x5466
+    assert c.events.list()[-1].detail == f"attached information 1: 1 (logical axis A1, {g.axes[1].name})"
+    c.mc.axes[1].homed = True
+    rs = c.fb("MC_GroupReset", AxesGroup="MC_Group000", Execute=True)
+    step_until(c, rs, "Done")
+    power = next(e.fb for e in c.program.values() if e.fb.DEF.name == "MC_Power" and e.fb.inp["Axis"] == g.axes[0].name)
+    c.set_inputs(power.id, {"Enable": False})
+    c.step(5)
+    mv2 = c.fb("MC_MoveLinear", AxesGroup="MC_Group000", Execute=True, Position=[1.0, 1.0], Velocity=10.0)
+    c.step(1)
+    assert mv2.ErrorID == 0x5441
+    assert c.events.list()[-1].detail == f"attached information 1: 0 (logical axis A0, {g.axes[0].name})"
 
 
 def test_reexecution_is_543b_and_stops_the_group(c: Controller) -> None:

@@ -92,6 +92,7 @@ class AxesGroup(GroupMotion, GroupPlanning, GroupMonitor):
         self.error_code = 0
         self.reset_generation = 0
         self.stop_holders: set[int] = set()
+        self.member_fault: tuple[int, int] | None = None  # (code, logical axis) of the last member_error(), A-1 info 1
         self.current: Job | None = None  # the running group instruction (move, stop, synchronous positioning)
         self.queue: list[Job] = []  # buffered group motion instructions
         self.motion: Motion | None = None
@@ -135,23 +136,29 @@ class AxesGroup(GroupMotion, GroupPlanning, GroupMonitor):
     def member_error(self) -> int:
         """Start conditions of a group motion instruction on the composition axes (A-1: 5441, 5466, 5442,
         6443/6444 — the limit inputs whatever the direction, "any axes group motion instruction", D130)."""
+        code, logical = self._member_fault()
+        self.member_fault = (code, logical) if code else None
+        return code
+
+    def _member_fault(self) -> tuple[int, int]:
+        """The first start condition a composition axis fails, and its logical axis number (A0 = 0 …)."""
         m = self.m
-        for a in self.axes:
+        for n, a in enumerate(self.axes):
             if not m.servo_on[a.i]:
-                return E.E_SERVO_OFF
-        for a in self.axes:
+                return E.E_SERVO_OFF, n
+        for n, a in enumerate(self.axes):
             if not a.homed:
-                return E.E_HOME_UNDEFINED
-        for a in self.axes:
+                return E.E_HOME_UNDEFINED, n
+        for n, a in enumerate(self.axes):
             if a.stop_holders:
-                return E_MEMBER_STOPPING
-        for a in self.axes:
+                return E_MEMBER_STOPPING, n
+        for n, a in enumerate(self.axes):
             din = int(m.din[a.i])
             if din & DI_POSITIVE_LIMIT:
-                return E.E_POSI_LIMIT_INPUT
+                return E.E_POSI_LIMIT_INPUT, n
             if din & DI_NEGATIVE_LIMIT:
-                return E.E_NEGA_LIMIT_INPUT
-        return 0
+                return E.E_NEGA_LIMIT_INPUT, n
+        return 0, 0
 
     def _end_job(self, job: Job | None, status: JobStatus, error_id: int = 0) -> None:
         if job is None or not job.running:
@@ -194,6 +201,12 @@ class AxesGroup(GroupMotion, GroupPlanning, GroupMonitor):
         (§4.1: a group error does not put the composition axes into error)."""
         if self.error_code == 0:
             self.error_code = code
+        fault, self.member_fault = self.member_fault, None
+        if not detail and fault is not None and fault[0] == code:
+            # A-1 attached information 1 of a group source: the logical axis number of the composition axis
+            # (basics L1199: 5441, 5466, 6443, 6444; for 5442 the axis MC_Stop is stopping)
+            n = fault[1]
+            detail = f"attached information 1: {n} (logical axis A{n}, {self.axes[n].name})"
         self.m.log_error(code, axis=None, source=f"{self.name} / {source}" if source else self.name, detail=detail,
                          group=self.name)
         self.abort_all()
