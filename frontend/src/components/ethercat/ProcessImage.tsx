@@ -1,8 +1,9 @@
 import { Stack, Text } from "@mantine/core";
-import { useEffect, useState } from "react";
+import { useState } from "react";
 import { api, unwrap } from "../../api/client";
 import type { ImageOut } from "../../api/types";
 import { hex, hexBytes } from "../../lib/hex";
+import { usePoll } from "../../lib/usePoll";
 import type { Dir } from "../../lib/pdo";
 import { Panel } from "../common/Panel";
 
@@ -23,32 +24,10 @@ interface Frames {
 
 function useImage(node: number, intervalMs: number): Frames & { error: string | null } {
   const [frames, setFrames] = useState<Frames>({ image: null, prev: null });
-  const [error, setError] = useState<string | null>(null);
-  useEffect(() => {
-    let busy = false;
-    let alive = true;
-    const tick = async () => {
-      if (busy || document.visibilityState !== "visible") return;
-      busy = true;
-      try {
-        const img = await unwrap(api.GET("/api/v1/ethercat/slaves/{address}/image", { params: { path: { address: node } } }));
-        if (alive) {
-          setFrames((f) => ({ image: img, prev: f.image }));
-          setError(null);
-        }
-      } catch (err) {
-        if (alive) setError(err instanceof Error ? err.message : String(err));
-      } finally {
-        busy = false;
-      }
-    };
-    void tick();
-    const t = setInterval(() => void tick(), intervalMs);
-    return () => {
-      alive = false;
-      clearInterval(t);
-    };
-  }, [node, intervalMs]);
+  const { error } = usePoll(
+    () => unwrap(api.GET("/api/v1/ethercat/slaves/{address}/image", { params: { path: { address: node } } })),
+    { intervalMs, deps: [node], onData: (img) => setFrames((f) => ({ image: img, prev: f.image })) },
+  );
   return { ...frames, error };
 }
 
