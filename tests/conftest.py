@@ -82,3 +82,16 @@ def step_until(c: Controller, fb: FunctionBlock, output: str, value: Any = True,
     n = c.step(limit, Until(fb.id, output, value), publish=False)
     assert fb.out[output] == value, f"{fb.DEF.name}.{output} never became {value!r} within {limit} cycles"
     return n
+
+
+def run_into_overflow(c: Controller, axis: str, sign: int, pulses_per_unit: float) -> float:
+    """Drive a powered Linear-Mode axis into command position overflow (sign +1) or underflow (−1): preset 5 units
+    before the end of the 40-bit pulse range, then a velocity move toward it until the MC aborts it at the edge
+    (decision D28; overflow itself is no error). Returns the edge position."""
+    edge = (2**39 - 1) / pulses_per_unit if sign > 0 else -(2**39) / pulses_per_unit
+    sp = c.fb("MC_SetPosition", Axis=axis, Execute=True, Position=edge - sign * 5.0)
+    step_until(c, sp, "Done")
+    mv = c.fb("MC_MoveVelocity", Axis=axis, Execute=True, Velocity=50.0, Acceleration=1000.0, Deceleration=1000.0,
+              Direction="_mcPositiveDirection" if sign > 0 else "_mcNegativeDirection")
+    step_until(c, mv, "CommandAborted", limit=2000)
+    return edge

@@ -19,7 +19,7 @@ from mcstudio.controller.kernel import Controller, Until
 from mcstudio.controller.mc.enums import AxisState, _eMC_AXIS_USE
 from mcstudio.controller.mc.fb.base import FunctionBlock
 from mcstudio.project.models import Project
-from tests.conftest import axis_project, power_on, small_project, step_until
+from tests.conftest import axis_project, power_on, run_into_overflow, small_project, step_until
 
 AX = "MC_Axis000"
 PPU = 104857.6  # pulses per mm of the fixtures (2^20 pulses per 10 mm)
@@ -1101,12 +1101,7 @@ def _overflowed(sign: int = 1) -> Controller:
     velocity move toward it (decision D28)."""
     c = Controller(axis_project())
     power_on(c)
-    edge = (2**39 - 1) / PPU if sign > 0 else -(2**39) / PPU
-    sp = c.fb("MC_SetPosition", Axis=AX, Execute=True, Position=edge - sign * 5.0)
-    step_until(c, sp, "Done")
-    mv = c.fb("MC_MoveVelocity", Axis=AX, Execute=True, Velocity=50.0, Acceleration=1000.0, Deceleration=1000.0,
-              Direction="_mcPositiveDirection" if sign > 0 else "_mcNegativeDirection")
-    step_until(c, mv, "CommandAborted", limit=2000)
+    edge = run_into_overflow(c, AX, sign, PPU)
     ax = c.mc.axes[0]
     assert ax.state == S.Standstill and not ax.error_code, "overflow itself is not an error"
     assert c.mc.cmd_pos[0] == pytest.approx(edge)

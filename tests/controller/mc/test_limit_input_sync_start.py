@@ -30,7 +30,7 @@ from mcstudio.controller.mc.cam.table import CamTable
 from mcstudio.controller.mc.enums import AxisState
 from mcstudio.controller.mc.fb.base import FunctionBlock
 from mcstudio.project.models import AxisConfig, Project
-from tests.conftest import MM_AXIS, power_on, step_until
+from tests.conftest import MM_AXIS, power_on, run_into_overflow, step_until
 
 M, A, S = "MC_Axis000", "MC_Axis001", "MC_Axis002"
 PPU = 104857.6  # pulses per mm (2^20 pulses per 10 mm)
@@ -293,12 +293,7 @@ def test_direction_less_instruction_in_position_overflow_is_6442(name: str, sign
     instructions D132 counts as direction-less. The slave is driven to the edge of the 40-bit pulse range by a
     velocity move (overflow itself is no error), then the instruction's Execute↑ gives 6442 in that period."""
     c = _rig({})
-    edge = (2**39 - 1) / PPU if sign > 0 else -(2**39) / PPU
-    sp = c.fb("MC_SetPosition", Axis=S, Execute=True, Position=edge - sign * 5.0)
-    step_until(c, sp, "Done")
-    mv = c.fb("MC_MoveVelocity", Axis=S, Execute=True, Velocity=50.0, Acceleration=1000.0, Deceleration=1000.0,
-              Direction="_mcPositiveDirection" if sign > 0 else "_mcNegativeDirection")
-    step_until(c, mv, "CommandAborted", limit=2000)
+    run_into_overflow(c, S, sign, PPU)
     slave = _slave(c)
     assert slave.state == AxisState.Standstill and not slave.error_code
     assert c.mc.ovf[slave.i] == sign
