@@ -69,8 +69,7 @@ def kind_of(method: str, path: str) -> Kind | None:
 
 
 # ---------------------------------------------------------------------------------------------------- models
-class _Model(StrictModel):
-    pass
+_Model = StrictModel
 
 
 class ControlHolder(_Model):

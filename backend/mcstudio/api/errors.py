@@ -129,7 +129,7 @@ def method_not_allowed(request: Request) -> JSONResponse:
     allow = allowed_methods(request.app, request.url.path)
     if not allow:  # no operation has this path (only the page fallback's GET matched it): nothing is here
         return JSONResponse({"detail": "Not Found"}, status_code=404)
-    return JSONResponse({"detail": f"{request.method} is not allowed here; allowed: {', '.join(allow) or 'none'}"},
+    return JSONResponse({"detail": f"{request.method} is not allowed here; allowed: {', '.join(allow)}"},
                         status_code=405, headers={"Allow": ", ".join(allow)})
 
 

@@ -22,8 +22,7 @@ Finite = Annotated[float, Field(allow_inf_nan=False)]
 Vec3 = Annotated[list[Finite], Field(min_length=3, max_length=3)]
 
 
-class _Model(StrictModel):
-    pass
+_Model = StrictModel
 
 
 # ---------------------------------------------------------------------------------------------- _sGROUP_REF

@@ -13,8 +13,7 @@ from .control import ControlState
 Mode = Literal["realtime", "fast", "paused"]
 
 
-class _Model(StrictModel):
-    pass
+_Model = StrictModel
 
 
 class Health(_Model):

@@ -12,8 +12,7 @@ from ..project.trace_models import TraceSettings, VariableKind
 TraceState = Literal["waiting", "triggered", "done", "running", "stopped"]
 
 
-class _Model(StrictModel):
-    pass
+_Model = StrictModel
 
 
 class TraceSummary(_Model):

@@ -14,9 +14,7 @@ from pydantic import Field
 
 from ..modelbase import StrictModel
 
-
-class _M(StrictModel):
-    pass
+_M = StrictModel
 
 
 class PdoEntryDescription(_M):

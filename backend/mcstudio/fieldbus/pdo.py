@@ -26,8 +26,7 @@ MAX_MAPPING_ENTRIES = 254  # subindexes 1–254 of a mapping object (`PdoMapping
 MAX_ASSIGNED = 254  # subindexes 1–254 of 1C12h/1C13h (`SlavePdoConfig.rx_assign`/`tx_assign`)
 
 
-class _Strict(StrictModel):
-    pass
+_Strict = StrictModel
 
 
 class PdoEntryConfig(_Strict):

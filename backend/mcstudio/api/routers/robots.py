@@ -21,8 +21,7 @@ from ..state import Studio
 router = APIRouter(tags=["viz"])
 
 
-class _Model(StrictModel):
-    pass
+_Model = StrictModel
 
 
 class RobotAxisOut(_Model):

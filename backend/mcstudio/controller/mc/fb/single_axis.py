@@ -262,17 +262,19 @@ class MC_Stop(ExecuteFB):
         job.deceleration = dec
         axis.replan(job)
 
-    def after_call(self, exe: bool) -> None:
-        if self._holding is not None and not exe:
+    def _release(self) -> None:
+        if self._holding is not None:
             self._holding.hold_stop(self.id, False)
             self._holding = None
+
+    def after_call(self, exe: bool) -> None:
+        if not exe:
+            self._release()
 
     def on_delete(self) -> None:
         # D133: deleting an instance that holds the axis in Stopping releases it as Execute falling would; nothing
         # else could (the axis stayed in Stopping and refused every motion)
-        if self._holding is not None:
-            self._holding.hold_stop(self.id, False)
-            self._holding = None
+        self._release()
         super().on_delete()
 
 
